@@ -1,0 +1,13 @@
+// The ricochet command line: one executable, one subcommand per job.
+#pragma once
+
+#include <span>
+#include <string_view>
+
+namespace game {
+
+// `ricochet demo`: builds a few shapes, runs queries on them and prints each result beside the
+// value worked out by hand, so a person can check the engine at a glance.
+int runDemo(std::span<const std::string_view> args);
+
+}  // namespace game

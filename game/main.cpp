@@ -1,0 +1,35 @@
+#include <cstdio>
+#include <string_view>
+#include <vector>
+
+#include "game/cli.h"
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: ricochet <command> [options]\n"
+    "\n"
+    "commands:\n"
+    "  demo      run the geometry demo and print results beside hand-worked values\n"
+    "\n"
+    "ricochet <command> --help shows a command's options.\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string_view> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "--help" || args[0] == "-h") {
+    std::fputs(kUsage, args.empty() ? stderr : stdout);
+    return args.empty() ? 2 : 0;
+  }
+  if (args[0] == "--version") {
+    std::puts("ricochet 0.1.0");
+    return 0;
+  }
+  std::string_view command = args[0];
+  std::span<const std::string_view> rest(args.data() + 1, args.size() - 1);
+  if (command == "demo") return game::runDemo(rest);
+  std::fprintf(stderr, "ricochet: unknown command '%.*s' (try ricochet --help)\n",
+               static_cast<int>(command.size()), command.data());
+  return 2;
+}

@@ -1,0 +1,379 @@
+#include "physics/distance.h"
+
+#include <cmath>
+
+namespace rc {
+namespace {
+
+int support(const ShapeProxy& p, Vec2 d) {
+  int best = 0;
+  float bestValue = dot(p.points[0], d);
+  for (int i = 1; i < p.count; ++i) {
+    float v = dot(p.points[i], d);
+    if (v > bestValue) {
+      best = i;
+      bestValue = v;
+    }
+  }
+  return best;
+}
+
+// A vertex of the simplex on the Minkowski difference B - A, all in A's frame.
+struct SimplexVertex {
+  Vec2 wA, wB, w;  // support point of A, of B, and w = wB - wA
+  float a;         // barycentric weight of the closest point
+  int indexA, indexB;
+};
+
+struct Simplex {
+  SimplexVertex v[3];
+  int count;
+
+  // Closest point of the simplex to the origin, by the Voronoi regions of its features with
+  // barycentric coordinates (Ericson, Real-Time Collision Detection, 5.1; Catto, GDC 2010).
+  void solve2() {
+    Vec2 w1 = v[0].w, w2 = v[1].w;
+    Vec2 e12 = w2 - w1;
+    float d12_2 = -dot(w1, e12);
+    if (d12_2 <= 0.0f) {  // origin beyond w1
+      v[0].a = 1.0f;
+      count = 1;
+      return;
+    }
+    float d12_1 = dot(w2, e12);
+    if (d12_1 <= 0.0f) {  // origin beyond w2
+      v[1].a = 1.0f;
+      v[0] = v[1];
+      count = 1;
+      return;
+    }
+    float inv = 1.0f / (d12_1 + d12_2);
+    v[0].a = d12_1 * inv;
+    v[1].a = d12_2 * inv;
+    count = 2;
+  }
+
+  void solve3() {
+    Vec2 w1 = v[0].w, w2 = v[1].w, w3 = v[2].w;
+    Vec2 e12 = w2 - w1, e13 = w3 - w1, e23 = w3 - w2;
+    float d12_1 = dot(w2, e12), d12_2 = -dot(w1, e12);
+    float d13_1 = dot(w3, e13), d13_2 = -dot(w1, e13);
+    float d23_1 = dot(w3, e23), d23_2 = -dot(w2, e23);
+    float n123 = cross(e12, e13);
+    float d123_1 = n123 * cross(w2, w3);
+    float d123_2 = n123 * cross(w3, w1);
+    float d123_3 = n123 * cross(w1, w2);
+
+    if (d12_2 <= 0.0f && d13_2 <= 0.0f) {  // vertex 1
+      v[0].a = 1.0f;
+      count = 1;
+      return;
+    }
+    if (d12_1 > 0.0f && d12_2 > 0.0f && d123_3 <= 0.0f) {  // edge 12
+      float inv = 1.0f / (d12_1 + d12_2);
+      v[0].a = d12_1 * inv;
+      v[1].a = d12_2 * inv;
+      count = 2;
+      return;
+    }
+    if (d13_1 > 0.0f && d13_2 > 0.0f && d123_2 <= 0.0f) {  // edge 13
+      float inv = 1.0f / (d13_1 + d13_2);
+      v[0].a = d13_1 * inv;
+      v[2].a = d13_2 * inv;
+      v[1] = v[2];
+      count = 2;
+      return;
+    }
+    if (d12_1 <= 0.0f && d23_2 <= 0.0f) {  // vertex 2
+      v[1].a = 1.0f;
+      v[0] = v[1];
+      count = 1;
+      return;
+    }
+    if (d13_1 <= 0.0f && d23_1 <= 0.0f) {  // vertex 3
+      v[2].a = 1.0f;
+      v[0] = v[2];
+      count = 1;
+      return;
+    }
+    if (d23_1 > 0.0f && d23_2 > 0.0f && d123_1 <= 0.0f) {  // edge 23
+      float inv = 1.0f / (d23_1 + d23_2);
+      v[1].a = d23_1 * inv;
+      v[2].a = d23_2 * inv;
+      v[0] = v[2];
+      count = 2;
+      return;
+    }
+    // Inside the triangle: the cores overlap.
+    float inv = 1.0f / (d123_1 + d123_2 + d123_3);
+    v[0].a = d123_1 * inv;
+    v[1].a = d123_2 * inv;
+    v[2].a = d123_3 * inv;
+    count = 3;
+  }
+
+  // Direction from the simplex towards the origin. For an edge, its perpendicular on the
+  // origin's side: more robust than the negated closest point when the origin is near the edge.
+  Vec2 searchDirection() const {
+    if (count == 1) return -v[0].w;
+    Vec2 e12 = v[1].w - v[0].w;
+    float sgn = cross(e12, -v[0].w);
+    return sgn > 0.0f ? leftPerp(e12) : rightPerp(e12);
+  }
+
+  void witnessPoints(Vec2* a, Vec2* b) const {
+    if (count == 1) {
+      *a = v[0].wA;
+      *b = v[0].wB;
+    } else if (count == 2) {
+      *a = v[0].a * v[0].wA + v[1].a * v[1].wA;
+      *b = v[0].a * v[0].wB + v[1].a * v[1].wB;
+    } else {
+      *a = v[0].a * v[0].wA + v[1].a * v[1].wA + v[2].a * v[2].wA;
+      *b = *a;
+    }
+  }
+};
+
+}  // namespace
+
+ShapeProxy makeProxy(const Vec2* points, int count, float radius) {
+  ShapeProxy p;
+  p.count = count;
+  p.radius = radius;
+  for (int i = 0; i < count; ++i)
+    p.points[i] = points[i];
+  return p;
+}
+
+ShapeProxy makeProxy(const Shape& s) {
+  switch (s.type) {
+    case ShapeType::circle:
+      return makeProxy(&s.circle.center, 1, s.circle.radius);
+    case ShapeType::box: {
+      Vec2 c = s.box.center, h = s.box.halfExtents;
+      Vec2 v[4] = {{c.x - h.x, c.y - h.y},
+                   {c.x + h.x, c.y - h.y},
+                   {c.x + h.x, c.y + h.y},
+                   {c.x - h.x, c.y + h.y}};
+      return makeProxy(v, 4, 0.0f);
+    }
+    case ShapeType::polygon:
+      return makeProxy(s.polygon.vertices, s.polygon.count, s.polygon.radius);
+    case ShapeType::capsule:
+      return makeProxy(&s.capsule.center1, 2, s.capsule.radius);
+    case ShapeType::segment:
+      return makeProxy(&s.segment.point1, 2, 0.0f);
+    case ShapeType::chainSegment:
+      return makeProxy(&s.chainSegment.segment.point1, 2, 0.0f);
+  }
+  return {};
+}
+
+DistanceOutput shapeDistance(const ShapeProxy& a, const Transform& xfA, const ShapeProxy& b,
+                             const Transform& xfB, SimplexCache* cache) {
+  const Transform rel = invMul(xfA, xfB);  // B in A's frame
+  Simplex s{};
+  auto makeVertex = [&](int ia, int ib) {
+    SimplexVertex v;
+    v.indexA = ia;
+    v.indexB = ib;
+    v.wA = a.points[ia];
+    v.wB = apply(rel, b.points[ib]);
+    v.w = v.wB - v.wA;
+    v.a = 1.0f;
+    return v;
+  };
+  if (cache != nullptr && cache->count > 0 && cache->count <= 3) {
+    s.count = cache->count;
+    for (int i = 0; i < s.count; ++i) {
+      int ia = cache->indexA[i], ib = cache->indexB[i];
+      if (ia >= a.count || ib >= b.count) {  // stale cache: start over
+        s.count = 0;
+        break;
+      }
+      s.v[i] = makeVertex(ia, ib);
+    }
+  }
+  if (s.count == 0) {
+    s.v[0] = makeVertex(0, 0);
+    s.count = 1;
+  }
+
+  constexpr int kMaxIterations = 24;
+  int iter = 0;
+  while (iter < kMaxIterations) {
+    int savedA[3], savedB[3];
+    int savedCount = s.count;
+    for (int i = 0; i < savedCount; ++i) {
+      savedA[i] = s.v[i].indexA;
+      savedB[i] = s.v[i].indexB;
+    }
+    if (s.count == 2) s.solve2();
+    if (s.count == 3) s.solve3();
+    if (s.count == 3) break;  // origin inside: the cores overlap
+
+    Vec2 d = s.searchDirection();
+    if (lengthSquared(d) < 1e-30f) break;  // origin on the simplex: touching cores
+
+    int ia = support(a, -d);
+    int ib = support(b, invRotate(rel.q, d));
+    ++iter;
+    bool duplicate = false;
+    for (int i = 0; i < savedCount; ++i) {
+      if (savedA[i] == ia && savedB[i] == ib) {
+        duplicate = true;
+        break;
+      }
+    }
+    if (duplicate) break;  // no progress: converged
+    s.v[s.count++] = makeVertex(ia, ib);
+  }
+
+  DistanceOutput out;
+  out.iterations = iter;
+  out.simplexCount = s.count;
+  if (cache != nullptr) {
+    cache->count = static_cast<std::uint8_t>(s.count);
+    for (int i = 0; i < s.count; ++i) {
+      cache->indexA[i] = static_cast<std::uint8_t>(s.v[i].indexA);
+      cache->indexB[i] = static_cast<std::uint8_t>(s.v[i].indexB);
+    }
+  }
+  Vec2 pA, pB;
+  s.witnessPoints(&pA, &pB);
+  Vec2 delta = pB - pA;
+  float coreDistance = length(delta);
+  float radii = a.radius + b.radius;
+  Vec2 n = coreDistance > 0.0f ? (1.0f / coreDistance) * delta : Vec2{};
+  if (coreDistance > radii) {
+    pA = mulAdd(pA, a.radius, n);
+    pB = mulSub(pB, b.radius, n);
+    out.distance = coreDistance - radii;
+  } else {
+    // Overlap: report the point between the two surfaces along the core direction.
+    Vec2 p = mulAdd(pA, 0.5f * (a.radius - b.radius + coreDistance), n);
+    pA = pB = p;
+    out.distance = 0.0f;
+  }
+  out.pointA = apply(xfA, pA);
+  out.pointB = apply(xfA, pB);
+  out.normal = rotate(xfA.q, n);
+  return out;
+}
+
+DistanceOutput shapeDistance(const Shape& a, const Transform& xfA, const Shape& b,
+                             const Transform& xfB) {
+  return shapeDistance(makeProxy(a), xfA, makeProxy(b), xfB, nullptr);
+}
+
+SegmentDistanceResult segmentDistance(Vec2 p1, Vec2 q1, Vec2 p2, Vec2 q2) {
+  // Ericson 5.1.9 in double: the float inputs' differences and products are exact there, so
+  // nearly parallel segments keep their digits.
+  double d1x = static_cast<double>(q1.x) - p1.x, d1y = static_cast<double>(q1.y) - p1.y;
+  double d2x = static_cast<double>(q2.x) - p2.x, d2y = static_cast<double>(q2.y) - p2.y;
+  double rx = static_cast<double>(p1.x) - p2.x, ry = static_cast<double>(p1.y) - p2.y;
+  double a = d1x * d1x + d1y * d1y, e = d2x * d2x + d2y * d2y;
+  double f = d2x * rx + d2y * ry;
+  double s = 0.0, t = 0.0;
+  constexpr double kEps = 1e-30;
+  if (a <= kEps && e <= kEps) {
+    s = t = 0.0;
+  } else if (a <= kEps) {
+    t = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    double c = d1x * rx + d1y * ry;
+    if (e <= kEps) {
+      s = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      double b = d1x * d2x + d1y * d2y;
+      double denom = a * e - b * b;  // >= 0; zero when parallel
+      s = denom > 0.0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+      t = (b * s + f) / e;
+      if (t < 0.0) {
+        t = 0.0;
+        s = std::clamp(-c / a, 0.0, 1.0);
+      } else if (t > 1.0) {
+        t = 1.0;
+        s = std::clamp((b - c) / a, 0.0, 1.0);
+      }
+    }
+  }
+  double c1x = p1.x + s * d1x, c1y = p1.y + s * d1y;
+  double c2x = p2.x + t * d2x, c2y = p2.y + t * d2y;
+  SegmentDistanceResult r;
+  r.closest1 = {static_cast<float>(c1x), static_cast<float>(c1y)};
+  r.closest2 = {static_cast<float>(c2x), static_cast<float>(c2y)};
+  r.fraction1 = static_cast<float>(s);
+  r.fraction2 = static_cast<float>(t);
+  double dx = c2x - c1x, dy = c2y - c1y;
+  r.distanceSquared = static_cast<float>(dx * dx + dy * dy);
+  return r;
+}
+
+SegmentIntersection intersectSegments(Vec2 p1, Vec2 q1, Vec2 p2, Vec2 q2) {
+  // In double: cross products of float differences are exact, so the orientation tests are right
+  // even for segments 1e-8 rad from parallel.
+  double rx = static_cast<double>(q1.x) - p1.x, ry = static_cast<double>(q1.y) - p1.y;
+  double sx = static_cast<double>(q2.x) - p2.x, sy = static_cast<double>(q2.y) - p2.y;
+  double qx = static_cast<double>(p2.x) - p1.x, qy = static_cast<double>(p2.y) - p1.y;
+  double denom = rx * sy - ry * sx;
+  double qr = qx * ry - qy * rx;
+  SegmentIntersection out;
+  if (denom == 0.0) {
+    if (qr != 0.0) return out;  // parallel, apart
+    double rr = rx * rx + ry * ry;
+    if (rr == 0.0) return out;
+    double t0 = (qx * rx + qy * ry) / rr;
+    double t1 = t0 + (sx * rx + sy * ry) / rr;
+    double lo = std::max(0.0, std::min(t0, t1)), hi = std::min(1.0, std::max(t0, t1));
+    if (lo > hi) return out;
+    out.hit = true;
+    out.fraction = static_cast<float>(lo);
+  } else {
+    double t = (qx * sy - qy * sx) / denom;
+    double u = qr / denom;
+    if (t < 0.0 || t > 1.0 || u < 0.0 || u > 1.0) return out;
+    out.hit = true;
+    out.fraction = static_cast<float>(t);
+  }
+  double f = out.fraction;
+  out.point = {static_cast<float>(p1.x + f * rx), static_cast<float>(p1.y + f * ry)};
+  return out;
+}
+
+bool trianglesOverlap(const Vec2 a[3], const Vec2 b[3]) {
+  // Separating axis theorem over the six edge normals, in double for exact orientation.
+  auto separated = [](const Vec2* p, const Vec2* q) {
+    for (int i = 0; i < 3; ++i) {
+      double nx = -(static_cast<double>(p[(i + 1) % 3].y) - p[i].y);
+      double ny = static_cast<double>(p[(i + 1) % 3].x) - p[i].x;
+      double minP = 1e300, maxP = -1e300, minQ = 1e300, maxQ = -1e300;
+      for (int k = 0; k < 3; ++k) {
+        double vp = nx * p[k].x + ny * p[k].y, vq = nx * q[k].x + ny * q[k].y;
+        minP = std::min(minP, vp);
+        maxP = std::max(maxP, vp);
+        minQ = std::min(minQ, vq);
+        maxQ = std::max(maxQ, vq);
+      }
+      if (maxP < minQ || maxQ < minP) return true;
+    }
+    return false;
+  };
+  return !separated(a, b) && !separated(b, a);
+}
+
+float circlePlaneSeparation(Vec2 center, float radius, Vec2 n, float d) {
+  return dot(n, center) + d - radius;
+}
+
+bool segmentLineIntersection(Vec2 r0, Vec2 v, Vec2 n, float d, float* t) {
+  float vn = dot(v, n);
+  if (vn == 0.0f) return false;
+  float tt = -(dot(r0, n) + d) / vn;
+  if (!(tt >= 0.0f && tt <= 1.0f)) return false;
+  *t = tt;
+  return true;
+}
+
+}  // namespace rc

@@ -1,0 +1,425 @@
+#include "physics/manifold.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "physics/distance.h"
+
+namespace rc {
+namespace {
+
+// A shape as a rounded convex hull: 1 to 8 core points, outward edge normals, and a radius.
+// A two-point hull (capsule, segment) has two edges: p0 -> p1 and back, with opposite normals.
+struct Hull {
+  Vec2 v[kMaxPolygonVertices];
+  Vec2 n[kMaxPolygonVertices];
+  Vec2 centroid;
+  int count;
+  float radius;
+};
+
+Hull twoPointHull(Vec2 a, Vec2 b, float radius) {
+  Hull h{};
+  h.count = 2;
+  h.radius = radius;
+  h.v[0] = a;
+  h.v[1] = b;
+  h.n[0] = normalize(rightPerp(b - a));
+  h.n[1] = -h.n[0];
+  h.centroid = 0.5f * (a + b);
+  return h;
+}
+
+Hull makeHull(const Shape& s) {
+  Hull h{};
+  switch (s.type) {
+    case ShapeType::circle:
+      h.count = 1;
+      h.v[0] = h.centroid = s.circle.center;
+      h.radius = s.circle.radius;
+      return h;
+    case ShapeType::box: {
+      Vec2 c = s.box.center, e = s.box.halfExtents;
+      h.count = 4;
+      h.v[0] = {c.x - e.x, c.y - e.y};
+      h.v[1] = {c.x + e.x, c.y - e.y};
+      h.v[2] = {c.x + e.x, c.y + e.y};
+      h.v[3] = {c.x - e.x, c.y + e.y};
+      h.n[0] = {0.0f, -1.0f};
+      h.n[1] = {1.0f, 0.0f};
+      h.n[2] = {0.0f, 1.0f};
+      h.n[3] = {-1.0f, 0.0f};
+      h.centroid = c;
+      return h;
+    }
+    case ShapeType::polygon:
+      h.count = s.polygon.count;
+      h.radius = s.polygon.radius;
+      for (int i = 0; i < h.count; ++i) {
+        h.v[i] = s.polygon.vertices[i];
+        h.n[i] = s.polygon.normals[i];
+      }
+      h.centroid = s.polygon.centroid;
+      return h;
+    case ShapeType::capsule:
+      return twoPointHull(s.capsule.center1, s.capsule.center2, s.capsule.radius);
+    case ShapeType::segment:
+      return twoPointHull(s.segment.point1, s.segment.point2, 0.0f);
+    case ShapeType::chainSegment:
+      return twoPointHull(s.chainSegment.segment.point1, s.chainSegment.segment.point2, 0.0f);
+  }
+  return h;
+}
+
+Hull transformed(const Hull& h, const Transform& xf) {
+  Hull out = h;
+  for (int i = 0; i < h.count; ++i) {
+    out.v[i] = apply(xf, h.v[i]);
+    out.n[i] = rotate(xf.q, h.n[i]);
+  }
+  out.centroid = apply(xf, h.centroid);
+  return out;
+}
+
+// A manifold in A's frame before it is placed in the world.
+struct Local {
+  Vec2 normal{};
+  Vec2 point[2]{};
+  float separation[2]{};
+  std::uint16_t id[2]{};
+  int count = 0;
+
+  void add(Vec2 p, float sep, std::uint16_t featureId) {
+    point[count] = p;
+    separation[count] = sep;
+    id[count] = featureId;
+    ++count;
+  }
+};
+
+Manifold toWorld(const Local& m, const Transform& xfA, const Transform& xfB) {
+  Manifold out;
+  out.normal = rotate(xfA.q, m.normal);
+  out.pointCount = m.count;
+  Vec2 offset = xfA.p - xfB.p;
+  for (int i = 0; i < m.count; ++i) {
+    ManifoldPoint& mp = out.points[i];
+    mp.anchorA = rotate(xfA.q, m.point[i]);
+    mp.anchorB = mp.anchorA + offset;
+    mp.point = mp.anchorA + xfA.p;
+    mp.separation = m.separation[i];
+    mp.id = m.id[i];
+  }
+  return out;
+}
+
+// Point c with radius rc against hull h (same frame). Normal from h towards the point.
+Local hullVsPoint(const Hull& h, Vec2 c, float rc) {
+  Local m;
+  Vec2 normal;
+  float dist;
+  std::uint16_t id = 0;
+  if (h.count == 1) {
+    Vec2 d = c - h.v[0];
+    dist = length(d);
+    normal = dist > 0.0f ? (1.0f / dist) * d : Vec2{0.0f, 1.0f};
+  } else {
+    int best = 0;
+    float maxSep = -1e30f;
+    for (int i = 0; i < h.count; ++i) {
+      float s = dot(h.n[i], c - h.v[i]);
+      if (s > maxSep) {
+        maxSep = s;
+        best = i;
+      }
+    }
+    normal = h.n[best];
+    dist = maxSep;
+    id = static_cast<std::uint16_t>(best);
+    if (maxSep > 0.0f) {
+      // Outside the core: the face's Voronoi region, or the vertex at either end of it.
+      Vec2 v1 = h.v[best], v2 = h.v[(best + 1) % h.count];
+      Vec2 e = v2 - v1;
+      float u = dot(c - v1, e);
+      Vec2 corner{};
+      bool vertex = false;
+      if (u <= 0.0f) {
+        corner = v1;
+        vertex = true;
+        id = static_cast<std::uint16_t>(0x100 | best);
+      } else if (u >= lengthSquared(e)) {
+        corner = v2;
+        vertex = true;
+        id = static_cast<std::uint16_t>(0x100 | ((best + 1) % h.count));
+      }
+      if (vertex) {
+        Vec2 d = c - corner;
+        dist = length(d);
+        if (dist > 0.0f) normal = (1.0f / dist) * d;
+      }
+    }
+  }
+  float sep = dist - h.radius - rc;
+  if (sep > kSpeculativeDistance) return m;
+  m.normal = normal;
+  m.add(mulSub(c, 0.5f * (rc + dist - h.radius), normal), sep, id);
+  return m;
+}
+
+// Largest separation of b from a over a's edge normals, and the edge that gives it.
+float maxSeparation(const Hull& a, const Hull& b, int* edge) {
+  int best = 0;
+  float bestSep = -1e30f;
+  for (int i = 0; i < a.count; ++i) {
+    float s = 1e30f;
+    for (int j = 0; j < b.count; ++j)
+      s = std::min(s, dot(a.n[i], b.v[j] - a.v[i]));
+    if (s > bestSep) {
+      bestSep = s;
+      best = i;
+    }
+  }
+  *edge = best;
+  return bestSep;
+}
+
+// Both hulls in the same frame; normal from a to b.
+Local collideLocal(const Hull& a, const Hull& b) {
+  if (b.count == 1) return hullVsPoint(a, b.v[0], b.radius);
+  if (a.count == 1) {
+    Local m = hullVsPoint(b, a.v[0], a.radius);
+    m.normal = -m.normal;
+    return m;
+  }
+  Local m;
+  const float radii = a.radius + b.radius;
+  int edgeA, edgeB;
+  float sepA = maxSeparation(a, b, &edgeA);
+  if (sepA > kSpeculativeDistance + radii) return m;
+  float sepB = maxSeparation(b, a, &edgeB);
+  if (sepB > kSpeculativeDistance + radii) return m;
+
+  // Prefer A's face unless B's is clearly better, so the reference face does not flicker
+  // between two nearly equal choices from one step to the next.
+  const bool flip = sepB > sepA + 0.1f * kLinearSlop;
+  const Hull& ref = flip ? b : a;
+  const Hull& inc = flip ? a : b;
+  const int edge = flip ? edgeB : edgeA;
+  const float sep = flip ? sepB : sepA;
+
+  if (sep > 0.1f * kLinearSlop) {
+    // The cores are apart. The face separation equals the true distance unless the closest
+    // features are two vertices; GJK tells which.
+    ShapeProxy pa = makeProxy(a.v, a.count, 0.0f), pb = makeProxy(b.v, b.count, 0.0f);
+    SimplexCache cache;
+    DistanceOutput d = shapeDistance(pa, Transform{}, pb, Transform{}, &cache);
+    if (d.distance > sep + 0.01f * kLinearSlop) {
+      float s = d.distance - radii;
+      if (s > kSpeculativeDistance) return m;
+      m.normal = d.normal;
+      std::uint16_t id =
+          static_cast<std::uint16_t>(0x4000 | (cache.indexA[0] << 4) | cache.indexB[0]);
+      m.add(mulAdd(d.pointA, a.radius + 0.5f * s, d.normal), s, id);
+      return m;
+    }
+  }
+
+  // Reference face v1 -> v2 with normal n; incident edge: the one most against n.
+  const int i1 = edge, i2 = (edge + 1) % ref.count;
+  const Vec2 v1 = ref.v[i1], v2 = ref.v[i2], n = ref.n[edge];
+  int incEdge = 0;
+  float minDot = 1e30f;
+  for (int j = 0; j < inc.count; ++j) {
+    float dd = dot(n, inc.n[j]);
+    if (dd < minDot) {
+      minDot = dd;
+      incEdge = j;
+    }
+  }
+  Vec2 w[2] = {inc.v[incEdge], inc.v[(incEdge + 1) % inc.count]};
+  int wid[2] = {incEdge, (incEdge + 1) % inc.count};
+
+  // Clip the incident edge to the slab between the reference face's side planes.
+  Vec2 t = normalize(v2 - v1);
+  float lo = 0.0f, hi = dot(v2 - v1, t);
+  float u0 = dot(w[0] - v1, t), u1 = dot(w[1] - v1, t);
+  Vec2 c[2] = {w[0], w[1]};
+  if (u0 < lo && u1 < lo) return m;
+  if (u0 > hi && u1 > hi) return m;
+  if (u0 != u1) {
+    auto at = [&](float u) { return lerp(w[0], w[1], (u - u0) / (u1 - u0)); };
+    if (u0 < lo) c[0] = at(lo);
+    if (u0 > hi) c[0] = at(hi);
+    if (u1 < lo) c[1] = at(lo);
+    if (u1 > hi) c[1] = at(hi);
+  }
+  const float refR = ref.radius, incR = inc.radius;
+  for (int k = 0; k < 2; ++k) {
+    float core = dot(c[k] - v1, n);
+    float s = core - radii;
+    if (s > kSpeculativeDistance) continue;
+    Vec2 p = mulAdd(c[k], 0.5f * (refR - incR - core), n);
+    std::uint16_t id =
+        static_cast<std::uint16_t>((flip ? 0x8000 : 0) | (i1 << 8) | (wid[k] << 4) | k);
+    m.add(p, s, id);
+  }
+  if (m.count == 2 && distanceSquared(m.point[0], m.point[1]) < 1e-12f) {
+    // A degenerate incident edge (parallel to the normal) clipped to one point.
+    if (m.separation[1] < m.separation[0]) {
+      m.point[0] = m.point[1];
+      m.separation[0] = m.separation[1];
+      m.id[0] = m.id[1];
+    }
+    m.count = 1;
+  }
+  m.normal = flip ? -n : n;
+  return m;
+}
+
+}  // namespace
+
+Manifold collideCircles(const Circle& a, const Transform& xfA, const Circle& b,
+                        const Transform& xfB) {
+  Transform rel = invMul(xfA, xfB);
+  Vec2 cB = apply(rel, b.center);
+  Vec2 d = cB - a.center;
+  float dist = length(d);
+  float sep = dist - a.radius - b.radius;
+  if (sep > kSpeculativeDistance) return Manifold{};
+  Local m;
+  m.normal = dist > 0.0f ? (1.0f / dist) * d : Vec2{0.0f, 1.0f};
+  m.add(mulAdd(a.center, a.radius + 0.5f * sep, m.normal), sep, 0);
+  return toWorld(m, xfA, xfB);
+}
+
+Manifold collideCapsuleAndCircle(const Capsule& a, const Transform& xfA, const Circle& b,
+                                 const Transform& xfB) {
+  Transform rel = invMul(xfA, xfB);
+  Vec2 c = apply(rel, b.center);
+  Vec2 e = a.center2 - a.center1;
+  float u = std::clamp(dot(c - a.center1, e) / lengthSquared(e), 0.0f, 1.0f);
+  Vec2 closest = mulAdd(a.center1, u, e);
+  Vec2 d = c - closest;
+  float dist = length(d);
+  float sep = dist - a.radius - b.radius;
+  if (sep > kSpeculativeDistance) return Manifold{};
+  Local m;
+  m.normal = dist > 0.0f ? (1.0f / dist) * d : normalize(rightPerp(e));
+  std::uint16_t id = u <= 0.0f ? 1 : (u >= 1.0f ? 2 : 0);
+  m.add(mulAdd(closest, a.radius + 0.5f * sep, m.normal), sep, id);
+  return toWorld(m, xfA, xfB);
+}
+
+Manifold collideBoxAndCircle(const Box& a, const Transform& xfA, const Circle& b,
+                             const Transform& xfB) {
+  Transform rel = invMul(xfA, xfB);
+  Vec2 p = apply(rel, b.center) - a.center;
+  Vec2 h = a.halfExtents;
+  Local m;
+  Vec2 normal;
+  float dist;
+  std::uint16_t id;
+  if (std::fabs(p.x) <= h.x && std::fabs(p.y) <= h.y) {
+    // Centre inside: push out through the nearest face.
+    float sx = std::fabs(p.x) - h.x, sy = std::fabs(p.y) - h.y;
+    if (sx > sy) {
+      normal = {p.x >= 0.0f ? 1.0f : -1.0f, 0.0f};
+      dist = sx;
+      id = p.x >= 0.0f ? 1 : 3;
+    } else {
+      normal = {0.0f, p.y >= 0.0f ? 1.0f : -1.0f};
+      dist = sy;
+      id = p.y >= 0.0f ? 2 : 0;
+    }
+  } else {
+    Vec2 q{std::clamp(p.x, -h.x, h.x), std::clamp(p.y, -h.y, h.y)};
+    Vec2 d = p - q;
+    dist = length(d);
+    normal = (1.0f / dist) * d;
+    id = static_cast<std::uint16_t>(0x10 | (p.x > h.x ? 1 : (p.x < -h.x ? 2 : 0)) |
+                                    (p.y > h.y ? 4 : (p.y < -h.y ? 8 : 0)));
+  }
+  float sep = dist - b.radius;
+  if (sep > kSpeculativeDistance) return Manifold{};
+  m.normal = normal;
+  m.add(a.center + mulSub(p, 0.5f * (b.radius + dist), normal), sep, id);
+  return toWorld(m, xfA, xfB);
+}
+
+Manifold collideBoxes(const Box& a, const Transform& xfA, const Box& b, const Transform& xfB) {
+  Transform rel = invMul(xfA, xfB);
+  if (!rel.q.isIdentity()) return collideHulls(Shape(a), xfA, Shape(b), xfB);
+  // Aligned boxes: the separating axis is x or y, and the contact points are the ends of the
+  // overlap of the two boxes' extents along the other axis.
+  Vec2 cA = a.center, cB = rel.p + b.center;
+  Vec2 hA = a.halfExtents, hB = b.halfExtents;
+  Vec2 d = cB - cA;
+  float sepX = std::fabs(d.x) - hA.x - hB.x;
+  float sepY = std::fabs(d.y) - hA.y - hB.y;
+  if (sepX > kSpeculativeDistance || sepY > kSpeculativeDistance) return Manifold{};
+  if (sepX > 0.0f && sepY > 0.0f) {
+    // Corner to corner: the closest features are two vertices.
+    return collideHulls(Shape(a), xfA, Shape(b), xfB);
+  }
+  Local m;
+  int axis = sepX > sepY ? 0 : 1;
+  float sep = axis == 0 ? sepX : sepY;
+  float sign = (axis == 0 ? d.x : d.y) >= 0.0f ? 1.0f : -1.0f;
+  int o = 1 - axis;
+  float cAo = o == 0 ? cA.x : cA.y, cBo = o == 0 ? cB.x : cB.y;
+  float hAo = o == 0 ? hA.x : hA.y, hBo = o == 0 ? hB.x : hB.y;
+  float lo = std::max(cAo - hAo, cBo - hBo), hi = std::min(cAo + hAo, cBo + hBo);
+  float faceA = (axis == 0 ? cA.x : cA.y) + sign * (axis == 0 ? hA.x : hA.y);
+  float mid = faceA + 0.5f * sign * sep;
+  m.normal = axis == 0 ? Vec2{sign, 0.0f} : Vec2{0.0f, sign};
+  std::uint16_t base = static_cast<std::uint16_t>(0x2000 | (axis << 2) | (sign > 0.0f ? 2 : 0));
+  for (int k = 0; k < 2; ++k) {
+    float u = k == 0 ? lo : hi;
+    Vec2 p = axis == 0 ? Vec2{mid, u} : Vec2{u, mid};
+    m.add(p, sep, static_cast<std::uint16_t>(base | k));
+    if (hi - lo <= 0.0f) break;
+  }
+  return toWorld(m, xfA, xfB);
+}
+
+Manifold collideHulls(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB) {
+  Hull ha = makeHull(a);
+  Hull hb = transformed(makeHull(b), invMul(xfA, xfB));
+  return toWorld(collideLocal(ha, hb), xfA, xfB);
+}
+
+Manifold collideChainSegment(const ChainSegment& a, const Transform& xfA, const Shape& b,
+                             const Transform& xfB) {
+  Hull hb = transformed(makeHull(b), invMul(xfA, xfB));
+  Vec2 p1 = a.segment.point1, p2 = a.segment.point2, g1 = a.ghost1, g2 = a.ghost2;
+  Vec2 nR = normalize(rightPerp(p2 - p1));
+  if (dot(hb.centroid - p1, nR) < 0.0f) {
+    if (a.oneSided) return Manifold{};
+    // Seen from the left: reverse the link so the shape is on its right.
+    std::swap(p1, p2);
+    std::swap(g1, g2);
+    nR = -nR;
+  }
+  Local m = collideLocal(twoPointHull(p1, p2, 0.0f), hb);
+  if (m.count == 0) return Manifold{};
+  Vec2 e = p2 - p1;
+  float tangential = dot(m.normal, normalize(e));
+  if (std::fabs(tangential) > 1e-4f) {
+    // The normal leans towards a joint: keep it only if the joint is convex and the normal lies
+    // inside the cone of normals between this link's and the neighbour's.
+    bool keep;
+    if (tangential < 0.0f) {
+      Vec2 e0 = p1 - g1;
+      keep = lengthSquared(e0) == 0.0f ||
+             (cross(e0, e) > 0.0f && cross(normalize(rightPerp(e0)), m.normal) >= 0.0f);
+    } else {
+      Vec2 e2 = g2 - p2;
+      keep = lengthSquared(e2) == 0.0f ||
+             (cross(e, e2) > 0.0f && cross(m.normal, normalize(rightPerp(e2))) >= 0.0f);
+    }
+    if (!keep) return Manifold{};
+  }
+  return toWorld(m, xfA, xfB);
+}
+
+}  // namespace rc

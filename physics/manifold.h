@@ -1,0 +1,56 @@
+// Ricochet physics: contact manifolds.
+//
+// A manifold describes how two shapes touch: one normal (from A to B) and up to two points, each
+// with its separation along the normal (negative when penetrating) and a feature id that stays
+// the same while the same features touch, so the solver can warm start from last step's
+// impulses. Points are reported while the shapes are within kSpeculativeDistance, so a solver
+// can stop an approaching body before it penetrates.
+//
+// How each pair is solved (collide.cpp registers them in a table):
+//   circle-circle, circle-capsule: closest points in closed form;
+//   circle-box, box-box (same rotation): axis-aligned fast paths, no trigonometry, no loops;
+//   everything else: both shapes as rounded hulls (1 to 8 core points and a radius; a capsule or
+//   segment is a two-point hull). The separating axis test finds the reference face; the incident
+//   edge is clipped to the reference face's side planes (Sutherland-Hodgman on one edge). When
+//   the cores are apart and the closest features are two vertices, the face normal is wrong, so
+//   GJK's closest points give the normal and a single point instead.
+//   chain links: as a segment, then the normal must lie inside the cone of normals that the link's
+//   neighbours allow at each joint; a contact whose normal belongs to a neighbour is dropped (the
+//   neighbour reports it), which removes ghost collisions at the joints of a flat or concave wall.
+#pragma once
+
+#include <cstdint>
+
+#include "physics/shapes.h"
+
+namespace rc {
+
+struct ManifoldPoint {
+  Vec2 point{};    // world point midway between the two surfaces
+  Vec2 anchorA{};  // point relative to A's origin (world orientation)
+  Vec2 anchorB{};  // point relative to B's origin (world orientation)
+  float separation = 0.0f;
+  std::uint16_t id = 0;
+};
+
+struct Manifold {
+  Vec2 normal{};  // unit, from A to B
+  ManifoldPoint points[2]{};
+  int pointCount = 0;
+};
+
+Manifold collideCircles(const Circle& a, const Transform& xfA, const Circle& b,
+                        const Transform& xfB);
+Manifold collideCapsuleAndCircle(const Capsule& a, const Transform& xfA, const Circle& b,
+                                 const Transform& xfB);
+Manifold collideBoxAndCircle(const Box& a, const Transform& xfA, const Circle& b,
+                             const Transform& xfB);
+// Falls back to the polygon path when the two boxes are not aligned.
+Manifold collideBoxes(const Box& a, const Transform& xfA, const Box& b, const Transform& xfB);
+// General path: any two solid or segment shapes as rounded hulls.
+Manifold collideHulls(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB);
+// A chain link against any solid shape, ghost-free.
+Manifold collideChainSegment(const ChainSegment& a, const Transform& xfA, const Shape& b,
+                             const Transform& xfB);
+
+}  // namespace rc

@@ -1,0 +1,218 @@
+#include "physics/raycast.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rc {
+namespace {
+
+CastOutput startsInside(const RayCastInput& in) {
+  CastOutput out;
+  out.hit = true;
+  out.fraction = 0.0f;
+  out.point = in.origin;
+  out.normal = -normalize(in.translation);
+  return out;
+}
+
+// Ray against a circle, stable for rays far longer than the radius: project the centre on the
+// ray and take the half chord from the perpendicular distance (no b^2 - 4ac cancellation).
+CastOutput castCircle(Vec2 center, float radius, const RayCastInput& in, float length, Vec2 dir) {
+  CastOutput out;
+  Vec2 s = center - in.origin;
+  float tc = dot(s, dir);
+  Vec2 perp = mulSub(s, tc, dir);
+  float h2 = radius * radius - lengthSquared(perp);
+  if (h2 < 0.0f) return out;
+  float t = tc - std::sqrt(h2);
+  if (t < 0.0f || t > in.maxFraction * length) return out;
+  out.fraction = t / length;
+  out.point = mulAdd(in.origin, t, dir);
+  out.normal = normalize(out.point - center);
+  out.hit = true;
+  return out;
+}
+
+// Ray against the segment p1-p2 from the side its normal n faces; returns the hit if any.
+CastOutput castSegmentSide(Vec2 p1, Vec2 p2, Vec2 n, const RayCastInput& in) {
+  CastOutput out;
+  float denom = dot(n, in.translation);
+  if (denom >= 0.0f) return out;  // parallel or from behind
+  float num = dot(n, p1 - in.origin);
+  if (num > 0.0f) return out;  // origin behind the face
+  float t = num / denom;
+  if (t < 0.0f || t > in.maxFraction) return out;
+  Vec2 p = mulAdd(in.origin, t, in.translation);
+  Vec2 e = p2 - p1;
+  float u = dot(p - p1, e);
+  if (u < 0.0f || u > lengthSquared(e)) return out;
+  out.hit = true;
+  out.fraction = t;
+  out.point = p;
+  out.normal = n;
+  return out;
+}
+
+void keepCloser(CastOutput& best, const CastOutput& c) {
+  if (c.hit && (!best.hit || c.fraction < best.fraction)) best = c;
+}
+
+bool insideCapsule(Vec2 a, Vec2 b, float r, Vec2 p) {
+  Vec2 e = b - a;
+  float t = std::clamp(dot(p - a, e) / lengthSquared(e), 0.0f, 1.0f);
+  return distanceSquared(p, mulAdd(a, t, e)) <= r * r;
+}
+
+// Ray against a capsule whose origin is known to be outside: the two end discs and the two
+// straight sides.
+CastOutput castCapsuleOutside(Vec2 a, Vec2 b, float r, const RayCastInput& in, float length,
+                              Vec2 dir) {
+  CastOutput best = castCircle(a, r, in, length, dir);
+  keepCloser(best, castCircle(b, r, in, length, dir));
+  Vec2 n = normalize(rightPerp(b - a));
+  keepCloser(best, castSegmentSide(mulAdd(a, r, n), mulAdd(b, r, n), n, in));
+  keepCloser(best, castSegmentSide(mulSub(a, r, n), mulSub(b, r, n), -n, in));
+  return best;
+}
+
+}  // namespace
+
+CastOutput rayCast(const Circle& s, const RayCastInput& in) {
+  if (distanceSquared(in.origin, s.center) <= s.radius * s.radius) return startsInside(in);
+  float length = rc::length(in.translation);
+  if (length == 0.0f) return {};
+  return castCircle(s.center, s.radius, in, length, (1.0f / length) * in.translation);
+}
+
+CastOutput rayCast(const Box& s, const RayCastInput& in) {
+  Vec2 lo = s.center - s.halfExtents, hi = s.center + s.halfExtents;
+  if (AABB{lo, hi}.contains(in.origin)) return startsInside(in);
+  // Slab test (Kay and Kajiya): the latest entry and the earliest exit over both axes.
+  float tEnter = 0.0f, tExit = in.maxFraction;
+  Vec2 normal{};
+  const float o[2] = {in.origin.x, in.origin.y};
+  const float d[2] = {in.translation.x, in.translation.y};
+  const float l[2] = {lo.x, lo.y}, h[2] = {hi.x, hi.y};
+  for (int axis = 0; axis < 2; ++axis) {
+    if (d[axis] == 0.0f) {
+      if (o[axis] < l[axis] || o[axis] > h[axis]) return {};
+      continue;
+    }
+    float inv = 1.0f / d[axis];
+    float t1 = (l[axis] - o[axis]) * inv, t2 = (h[axis] - o[axis]) * inv;
+    float sign = -1.0f;
+    if (t1 > t2) {
+      std::swap(t1, t2);
+      sign = 1.0f;
+    }
+    if (t1 > tEnter) {
+      tEnter = t1;
+      normal = axis == 0 ? Vec2{sign, 0.0f} : Vec2{0.0f, sign};
+    }
+    tExit = std::min(tExit, t2);
+    if (tEnter > tExit) return {};
+  }
+  if (normal == Vec2{}) return {};  // never entered a slab within range
+  CastOutput out;
+  out.hit = true;
+  out.fraction = tEnter;
+  out.point = mulAdd(in.origin, tEnter, in.translation);
+  out.normal = normal;
+  return out;
+}
+
+CastOutput rayCast(const Polygon& s, const RayCastInput& in) {
+  if (s.radius > 0.0f) {
+    // A rounded polygon is its core plus a capsule on every edge.
+    if (containsPoint(Shape(s), Transform{}, in.origin)) return startsInside(in);
+    float length = rc::length(in.translation);
+    if (length == 0.0f) return {};
+    Vec2 dir = (1.0f / length) * in.translation;
+    CastOutput best;
+    for (int i = 0; i < s.count; ++i)
+      keepCloser(best, castCapsuleOutside(s.vertices[i], s.vertices[(i + 1) % s.count], s.radius,
+                                          in, length, dir));
+    return best;
+  }
+  // Cyrus-Beck clipping of the ray against every edge's half-plane.
+  float lower = 0.0f, upper = in.maxFraction;
+  int index = -1;
+  for (int i = 0; i < s.count; ++i) {
+    float num = dot(s.normals[i], s.vertices[i] - in.origin);
+    float den = dot(s.normals[i], in.translation);
+    if (den == 0.0f) {
+      if (num < 0.0f) return {};  // parallel to this edge and outside it
+    } else if (den < 0.0f && num < lower * den) {
+      lower = num / den;  // entering this half-plane later
+      index = i;
+    } else if (den > 0.0f && num < upper * den) {
+      upper = num / den;  // leaving this half-plane earlier
+    }
+    if (upper < lower) return {};
+  }
+  if (index < 0) {
+    // Never entered: the origin is inside every half-plane, or the ray has zero length.
+    bool inside = true;
+    for (int i = 0; i < s.count; ++i)
+      inside = inside && dot(s.normals[i], in.origin - s.vertices[i]) <= 0.0f;
+    return inside ? startsInside(in) : CastOutput{};
+  }
+  CastOutput out;
+  out.hit = true;
+  out.fraction = lower;
+  out.point = mulAdd(in.origin, lower, in.translation);
+  out.normal = s.normals[index];
+  return out;
+}
+
+CastOutput rayCast(const Capsule& s, const RayCastInput& in) {
+  if (insideCapsule(s.center1, s.center2, s.radius, in.origin)) return startsInside(in);
+  float length = rc::length(in.translation);
+  if (length == 0.0f) return {};
+  return castCapsuleOutside(s.center1, s.center2, s.radius, in, length,
+                            (1.0f / length) * in.translation);
+}
+
+CastOutput rayCast(const Segment& s, const RayCastInput& in, bool oneSided) {
+  Vec2 n = normalize(rightPerp(s.point2 - s.point1));
+  CastOutput out = castSegmentSide(s.point1, s.point2, n, in);
+  if (out.hit || oneSided) return out;
+  return castSegmentSide(s.point1, s.point2, -n, in);
+}
+
+CastOutput rayCast(const ChainSegment& s, const RayCastInput& in) {
+  return rayCast(s.segment, in, s.oneSided);
+}
+
+CastOutput rayCast(const Shape& s, const Transform& xf, const RayCastInput& in) {
+  RayCastInput local{invApply(xf, in.origin), invRotate(xf.q, in.translation), in.maxFraction};
+  CastOutput out;
+  switch (s.type) {
+    case ShapeType::circle:
+      out = rayCast(s.circle, local);
+      break;
+    case ShapeType::box:
+      out = rayCast(s.box, local);
+      break;
+    case ShapeType::polygon:
+      out = rayCast(s.polygon, local);
+      break;
+    case ShapeType::capsule:
+      out = rayCast(s.capsule, local);
+      break;
+    case ShapeType::segment:
+      out = rayCast(s.segment, local);
+      break;
+    case ShapeType::chainSegment:
+      out = rayCast(s.chainSegment, local);
+      break;
+  }
+  if (out.hit) {
+    // The point from the world ray, not the local one, so far-off shapes keep their precision.
+    out.point = mulAdd(in.origin, out.fraction, in.translation);
+    out.normal = rotate(xf.q, out.normal);
+  }
+  return out;
+}
+
+}  // namespace rc

@@ -207,21 +207,34 @@ Local collideLocal(const Hull& a, const Hull& b) {
   const int edge = flip ? edgeB : edgeA;
   const float sep = flip ? sepB : sepA;
 
-  if (sep > 0.1f * kLinearSlop) {
-    // The cores are apart. The face separation equals the true distance unless the closest
-    // features are two vertices; GJK tells which.
-    ShapeProxy pa = makeProxy(a.v, a.count, 0.0f), pb = makeProxy(b.v, b.count, 0.0f);
-    SimplexCache cache;
-    DistanceOutput d = shapeDistance(pa, Transform{}, pb, Transform{}, &cache);
-    if (d.distance > sep + 0.01f * kLinearSlop) {
-      float s = d.distance - radii;
-      if (s > kSpeculativeDistance) return m;
-      m.normal = d.normal;
-      std::uint16_t id =
-          static_cast<std::uint16_t>(0x4000 | (cache.indexA[0] << 4) | cache.indexB[0]);
-      m.add(mulAdd(d.pointA, a.radius + 0.5f * s, d.normal), s, id);
-      return m;
+  // When the cores are apart, the face separation equals the true distance unless the closest
+  // features are two vertices; GJK tells which. A two-point hull has no faces at its ends, so
+  // its face separation can read zero for cores that are apart along its axis: check always.
+  SimplexCache cache;
+  DistanceOutput gjk{};
+  bool haveGjk = false;
+  auto coreDistance = [&]() -> const DistanceOutput& {
+    if (!haveGjk) {
+      ShapeProxy pa = makeProxy(a.v, a.count, 0.0f), pb = makeProxy(b.v, b.count, 0.0f);
+      gjk = shapeDistance(pa, Transform{}, pb, Transform{}, &cache);
+      haveGjk = true;
     }
+    return gjk;
+  };
+  auto vertexContact = [&]() {
+    const DistanceOutput& d = coreDistance();
+    float s = d.distance - radii;
+    if (s > kSpeculativeDistance) return m;
+    m.normal = d.normal;
+    std::uint16_t id =
+        static_cast<std::uint16_t>(0x4000 | (cache.indexA[0] << 4) | cache.indexB[0]);
+    m.add(mulAdd(d.pointA, a.radius + 0.5f * s, d.normal), s, id);
+    return m;
+  };
+  if (sep > 0.1f * kLinearSlop || a.count == 2 || b.count == 2) {
+    const DistanceOutput& d = coreDistance();
+    if (d.distance > 0.1f * kLinearSlop && d.distance > sep + 0.01f * kLinearSlop)
+      return vertexContact();
   }
 
   // Reference face v1 -> v2 with normal n; incident edge: the one most against n.
@@ -244,8 +257,18 @@ Local collideLocal(const Hull& a, const Hull& b) {
   float lo = 0.0f, hi = dot(v2 - v1, t);
   float u0 = dot(w[0] - v1, t), u1 = dot(w[1] - v1, t);
   Vec2 c[2] = {w[0], w[1]};
-  if (u0 < lo && u1 < lo) return m;
-  if (u0 > hi && u1 > hi) return m;
+  if ((u0 < lo && u1 < lo) || (u0 > hi && u1 > hi)) {
+    // The incident edge lies past an end of the reference face: the closest features are that
+    // end's vertex and an incident vertex (a case the GJK threshold above can miss by a hair).
+    if (coreDistance().distance > 0.1f * kLinearSlop) return vertexContact();
+    // Cores overlapping in an odd configuration: keep the deeper incident vertex unclipped.
+    int k = dot(w[0] - v1, n) <= dot(w[1] - v1, n) ? 0 : 1;
+    float core = dot(w[k] - v1, n);
+    m.normal = flip ? -n : n;
+    m.add(mulAdd(w[k], 0.5f * (ref.radius - inc.radius - core), n), core - radii,
+          static_cast<std::uint16_t>((flip ? 0x8000 : 0) | (i1 << 8) | (wid[k] << 4) | k));
+    return m;
+  }
   if (u0 != u1) {
     auto at = [&](float u) { return lerp(w[0], w[1], (u - u0) / (u1 - u0)); };
     if (u0 < lo) c[0] = at(lo);

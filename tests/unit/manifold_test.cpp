@@ -1,0 +1,380 @@
+// Contact manifolds: hand-worked cases, fast paths against the general path, mirrored pairs,
+// ghost-free chains, and a brute-force check of the deepest separation for every pair.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "physics/collide.h"
+#include "physics/distance.h"
+#include "support/random_shapes.h"
+
+namespace {
+
+using rc::Vec2;
+using rc::testing::Kind;
+
+float deepest(const rc::Manifold& m) {
+  float s = 1e30f;
+  for (int i = 0; i < m.pointCount; ++i)
+    s = std::min(s, m.points[i].separation);
+  return s;
+}
+
+TEST(Manifold, BoxRestingOnGround) {
+  rc::Transform ground{{0, -1.5f}, {}};
+  rc::Transform body{{0.3f, -0.01f}, {}};
+  for (bool general : {false, true}) {
+    rc::Shape g =
+        general ? rc::Shape(rc::makeOrientedBox(5, 0.5f)) : rc::Shape(rc::makeBox(5, 0.5f));
+    rc::Shape b = general ? rc::Shape(rc::makeOrientedBox(1, 1)) : rc::Shape(rc::makeBox(1, 1));
+    rc::Manifold m = rc::collide(g, ground, b, body);
+    ASSERT_EQ(m.pointCount, 2) << general;
+    EXPECT_NEAR(m.normal.x, 0.0f, 1e-6f);
+    EXPECT_NEAR(m.normal.y, 1.0f, 1e-6f);
+    float xs[2] = {m.points[0].point.x, m.points[1].point.x};
+    EXPECT_NEAR(std::min(xs[0], xs[1]), -0.7f, 1e-5f);
+    EXPECT_NEAR(std::max(xs[0], xs[1]), 1.3f, 1e-5f);
+    for (int i = 0; i < 2; ++i) {
+      EXPECT_NEAR(m.points[i].separation, -0.01f, 1e-5f);
+      EXPECT_NEAR(m.points[i].point.y, -1.005f, 1e-5f);
+      // Anchors are the point relative to each body's origin.
+      EXPECT_NEAR(m.points[i].anchorA.y, 0.495f, 1e-5f);
+      EXPECT_NEAR(m.points[i].anchorB.y, -0.995f, 1e-5f);
+    }
+  }
+}
+
+TEST(Manifold, CircleOnBoxAndOnPolygon) {
+  rc::Shape circle = rc::makeCircle({0, 0}, 0.5f);
+  rc::Transform c{{0.2f, 0.49f}, {}};
+  for (rc::Shape ground :
+       {rc::Shape(rc::makeBox(5, 1, {0, -1})), rc::Shape(rc::makeOrientedBox(5, 1, {0, -1}))}) {
+    rc::Manifold m = rc::collide(ground, {}, circle, c);
+    ASSERT_EQ(m.pointCount, 1);
+    EXPECT_NEAR(m.normal.y, 1.0f, 1e-6f);
+    EXPECT_NEAR(m.points[0].separation, -0.01f, 1e-5f);
+    EXPECT_NEAR(m.points[0].point.x, 0.2f, 1e-6f);
+    EXPECT_NEAR(m.points[0].point.y, -0.005f, 1e-5f);
+  }
+  // Past the corner: the normal points from the corner to the centre.
+  rc::Manifold corner = rc::collide(rc::makeBox(1, 1), {}, circle, {{1.3f, 1.3f}, {}});
+  ASSERT_EQ(corner.pointCount, 1);
+  EXPECT_NEAR(corner.normal.x, std::sqrt(0.5f), 1e-6f);
+  EXPECT_NEAR(corner.points[0].separation, 0.3f * std::sqrt(2.0f) - 0.5f, 1e-5f);
+}
+
+TEST(Manifold, CapsuleFlatOnGroundAndEndToEnd) {
+  rc::Shape cap = rc::makeCapsule({-1, 0}, {1, 0}, 0.25f);
+  rc::Manifold flat = rc::collide(rc::makeBox(5, 0.5f), {{0, -0.5f}, {}}, cap, {{0, 0.24f}, {}});
+  ASSERT_EQ(flat.pointCount, 2);
+  EXPECT_NEAR(flat.normal.y, 1.0f, 1e-6f);
+  for (int i = 0; i < 2; ++i)
+    EXPECT_NEAR(flat.points[i].separation, -0.01f, 1e-5f);
+  // End to end along x: the closest features are two vertices, one point, normal along x.
+  rc::Manifold ends = rc::collide(cap, {}, cap, {{2.505f, 0.0f}, {}});
+  ASSERT_EQ(ends.pointCount, 1);
+  EXPECT_NEAR(ends.normal.x, 1.0f, 1e-6f);
+  EXPECT_NEAR(ends.points[0].separation, 0.005f, 1e-5f);
+  // Crossed at right angles, cores intersecting: the shortest way out is up by the 0.55 m of
+  // B's core below A's axis plus both radii.
+  rc::Manifold crossed = rc::collide(cap, {}, cap, {{0, 0.45f}, rc::Rot::fromAngle(rc::kPi / 2)});
+  ASSERT_EQ(crossed.pointCount, 1);
+  EXPECT_NEAR(crossed.normal.y, 1.0f, 1e-6f);
+  EXPECT_NEAR(deepest(crossed), -1.05f, 1e-5f);
+}
+
+TEST(Manifold, SeparatedPolygonsVertexToVertexGetTheDiagonalNormal) {
+  rc::Shape box = rc::makeOrientedBox(0.5f, 0.5f);
+  rc::Transform b{{1.005f, 1.005f}, {}};
+  rc::Manifold m = rc::collide(box, {}, box, b);
+  ASSERT_EQ(m.pointCount, 1);
+  EXPECT_NEAR(m.normal.x, std::sqrt(0.5f), 1e-4f);
+  EXPECT_NEAR(m.points[0].separation, 0.005f * std::sqrt(2.0f), 1e-5f);
+  // The aligned-box fast path agrees.
+  rc::Manifold fast = rc::collide(rc::makeBox(0.5f, 0.5f), {}, rc::makeBox(0.5f, 0.5f), b);
+  ASSERT_EQ(fast.pointCount, 1);
+  EXPECT_NEAR(fast.points[0].separation, m.points[0].separation, 1e-6f);
+}
+
+TEST(Manifold, NothingBeyondTheSpeculativeDistance) {
+  rc::Shape c = rc::makeCircle({}, 1);
+  EXPECT_EQ(rc::collide(c, {}, c, {{2.0f + rc::kSpeculativeDistance * 1.1f, 0}, {}}).pointCount, 0);
+  EXPECT_EQ(rc::collide(c, {}, c, {{2.0f + rc::kSpeculativeDistance * 0.9f, 0}, {}}).pointCount, 1);
+}
+
+TEST(Manifold, AlignedBoxFastPathMatchesGeneralPath) {
+  rc::Random rng(21);
+  int compared = 0;
+  for (int i = 0; i < 20000; ++i) {
+    rc::Box a =
+        rc::makeBox(rng.uniform(0.1f, 2), rng.uniform(0.1f, 2), rng.inBox({-1, -1}, {1, 1}));
+    rc::Box b =
+        rc::makeBox(rng.uniform(0.1f, 2), rng.uniform(0.1f, 2), rng.inBox({-1, -1}, {1, 1}));
+    rc::Transform xa{rng.inBox({-2, -2}, {2, 2}), {}}, xb{rng.inBox({-2, -2}, {2, 2}), {}};
+    rc::Manifold fast = rc::collide(a, xa, b, xb);
+    rc::Manifold slow = rc::collideHulls(a, xa, b, xb);
+    ASSERT_EQ(fast.pointCount > 0, slow.pointCount > 0) << i;
+    if (fast.pointCount == 0) continue;
+    ++compared;
+    EXPECT_NEAR(deepest(fast), deepest(slow), 1e-5f) << i;
+    // Ties between the x and y axes may pick different normals; otherwise they agree.
+    if (rc::dot(fast.normal, slow.normal) < 0.999f) {
+      EXPECT_NEAR(deepest(fast), deepest(slow), 1e-5f);
+      continue;
+    }
+    EXPECT_EQ(fast.pointCount, slow.pointCount) << i;
+  }
+  EXPECT_GT(compared, 5000);
+}
+
+TEST(Manifold, MirroredPairsAgree) {
+  rc::Random rng(22);
+  const Kind kinds[] = {Kind::circle,      Kind::box,     Kind::polygon, Kind::roundedPolygon,
+                        Kind::orientedBox, Kind::capsule, Kind::segment};
+  for (Kind ka : kinds) {
+    for (Kind kb : kinds) {
+      if (ka == Kind::segment && kb == Kind::segment) continue;
+      int ties = 0;
+      for (int i = 0; i < 2000; ++i) {
+        rc::Shape a = rc::testing::randomShape(rng, ka), b = rc::testing::randomShape(rng, kb);
+        rc::Transform xa = rc::testing::randomTransform(rng, {}, 1.0f);
+        rc::Transform xb = rc::testing::randomTransform(rng, {}, 1.0f);
+        rc::Manifold ab = rc::collide(a, xa, b, xb), ba = rc::collide(b, xb, a, xa);
+        // Each side computes in its own frame, so results agree to rounding, not bits, and the
+        // reference face is chosen with a 0.1 * slop preference for shape A: within that window
+        // the mirrored call may use the other shape's face.
+        ASSERT_EQ(ab.pointCount > 0, ba.pointCount > 0);
+        if (ab.pointCount == 0) continue;
+        EXPECT_NEAR(deepest(ab), deepest(ba), 0.1f * rc::kLinearSlop + 1e-5f);
+        // Opposite normals (within 1e-3 rad), except where the two calls chose different
+        // reference faces; those ties are counted and bounded.
+        if (rc::dot(ab.normal, ba.normal) > -0.9999995f) ++ties;
+      }
+      EXPECT_LE(ties, 100) << rc::testing::kindName(ka) << " vs " << rc::testing::kindName(kb);
+    }
+  }
+}
+
+// Support of a placed shape along direction n: max over its core points of p.n, plus radius.
+float support(const rc::Shape& s, const rc::Transform& xf, Vec2 n) {
+  rc::ShapeProxy p = rc::makeProxy(s);
+  float best = -1e30f;
+  for (int i = 0; i < p.count; ++i)
+    best = std::max(best, rc::dot(rc::apply(xf, p.points[i]), n));
+  return best + p.radius;
+}
+// Gap between the shapes' projections on n (A below, B above); its maximum over all directions
+// is the distance when apart and minus the penetration depth when overlapping.
+double gap(const rc::Shape& a, const rc::Transform& xa, const rc::Shape& b, const rc::Transform& xb,
+           double angle) {
+  Vec2 n{static_cast<float>(std::cos(angle)), static_cast<float>(std::sin(angle))};
+  return -static_cast<double>(support(b, xb, -n)) - support(a, xa, n);
+}
+double bestGap(const rc::Shape& a, const rc::Transform& xa, const rc::Shape& b,
+               const rc::Transform& xb) {
+  // The gap is a kinked function of the angle (Lipschitz with the shapes' size), so sample
+  // densely and refine every local maximum among the samples by golden-section search.
+  constexpr int kSamples = 1440;
+  constexpr double kTwoPi = 6.283185307179586;
+  constexpr double kStep = kTwoPi / kSamples;
+  double g[kSamples];
+  for (int k = 0; k < kSamples; ++k)
+    g[k] = gap(a, xa, b, xb, kStep * k);
+  double best = -1e30;
+  for (int k = 0; k < kSamples; ++k) {
+    best = std::max(best, g[k]);
+    if (g[k] < g[(k + 1) % kSamples] || g[k] < g[(k + kSamples - 1) % kSamples]) continue;
+    double lo = kStep * (k - 1), hi = kStep * (k + 1);
+    const double r = 0.6180339887498949;
+    for (int it = 0; it < 40; ++it) {
+      double m1 = hi - r * (hi - lo), m2 = lo + r * (hi - lo);
+      if (gap(a, xa, b, xb, m1) < gap(a, xa, b, xb, m2))
+        lo = m1;
+      else
+        hi = m2;
+    }
+    best = std::max(best, gap(a, xa, b, xb, 0.5 * (lo + hi)));
+  }
+  return best;
+}
+
+TEST(Manifold, DeepestSeparationMatchesBruteForceForEveryPair) {
+  rc::Random rng(23);
+  const Kind kinds[] = {Kind::circle,      Kind::box,     Kind::polygon, Kind::roundedPolygon,
+                        Kind::orientedBox, Kind::capsule, Kind::segment};
+  for (Kind ka : kinds) {
+    for (Kind kb : kinds) {
+      if (ka == Kind::segment && kb == Kind::segment) continue;
+      int touching = 0, clippedAway = 0;
+      for (int i = 0; i < 600; ++i) {
+        rc::Shape a = rc::testing::randomShape(rng, ka), b = rc::testing::randomShape(rng, kb);
+        rc::Transform xa = rc::testing::randomTransform(rng, {}, 0.8f);
+        rc::Transform xb = rc::testing::randomTransform(rng, {}, 0.8f);
+        double truth = bestGap(a, xa, b, xb);
+        rc::Manifold m = rc::collide(a, xa, b, xb);
+        std::string what = std::string(rc::testing::kindName(ka)) + " vs " +
+                           rc::testing::kindName(kb) + " case " + std::to_string(i);
+        if (truth > rc::kSpeculativeDistance + 1e-4) {
+          EXPECT_EQ(m.pointCount, 0) << what << " gap " << truth;
+          continue;
+        }
+        if (truth < rc::kSpeculativeDistance - 1e-4) {
+          ASSERT_GT(m.pointCount, 0) << what << " gap " << truth;
+        }
+        if (m.pointCount == 0) continue;
+        ++touching;
+        // The normal is (near) optimal: the projections along it are as far apart as the best.
+        double along = -static_cast<double>(support(b, xb, -m.normal)) - support(a, xa, m.normal);
+        EXPECT_NEAR(along, truth, 1e-3) << what;
+        // The deepest point has the depth along the normal, unless clipping to the reference
+        // face removed the deepest incident vertex (then it is shallower): count those.
+        double d = deepest(m);
+        if (d > along + 1e-3) {
+          ++clippedAway;
+          continue;
+        }
+        EXPECT_NEAR(d, along, 1e-3) << what;
+      }
+      EXPECT_GT(touching, 60) << rc::testing::kindName(ka) << " vs " << rc::testing::kindName(kb);
+      EXPECT_LE(clippedAway, touching / 20)
+          << rc::testing::kindName(ka) << " vs " << rc::testing::kindName(kb);
+    }
+  }
+}
+
+TEST(Manifold, SeparationsAgreeWithDistanceWhenApart) {
+  rc::Random rng(24);
+  for (int i = 0; i < 20000; ++i) {
+    Kind ka = static_cast<Kind>(rng.below(7)), kb = static_cast<Kind>(rng.below(6));
+    rc::Shape a = rc::testing::randomShape(rng, ka), b = rc::testing::randomShape(rng, kb);
+    rc::Transform xa = rc::testing::randomTransform(rng, {}, 1.0f);
+    rc::Transform xb = rc::testing::randomTransform(rng, {}, 1.0f);
+    float dist = rc::shapeDistance(a, xa, b, xb).distance;
+    if (dist <= 1e-4f) continue;
+    rc::Manifold m = rc::collide(a, xa, b, xb);
+    if (dist > rc::kSpeculativeDistance + 1e-4f) {
+      EXPECT_EQ(m.pointCount, 0);
+    } else if (dist < rc::kSpeculativeDistance - 1e-4f) {
+      ASSERT_GT(m.pointCount, 0);
+      EXPECT_NEAR(deepest(m), dist, 1e-4f) << i;
+    }
+  }
+}
+
+TEST(Manifold, InvariantUnderMovingBothShapes) {
+  rc::Random rng(25);
+  for (int i = 0; i < 20000; ++i) {
+    Kind ka = static_cast<Kind>(rng.below(7)), kb = static_cast<Kind>(rng.below(6));
+    rc::Shape a = rc::testing::randomShape(rng, ka), b = rc::testing::randomShape(rng, kb);
+    rc::Transform xa = rc::testing::randomTransform(rng, {}, 0.8f);
+    rc::Transform xb = rc::testing::randomTransform(rng, {}, 0.8f);
+    rc::Transform move = rc::testing::randomTransform(rng, {}, 50.0f);
+    rc::Manifold m1 = rc::collide(a, xa, b, xb);
+    rc::Manifold m2 = rc::collide(a, rc::mul(move, xa), b, rc::mul(move, xb));
+    if (m1.pointCount == 0 && m2.pointCount == 0) continue;
+    if (m1.pointCount == 0 || m2.pointCount == 0) {
+      // Only a case right at the speculative boundary may differ.
+      float d = rc::shapeDistance(a, xa, b, xb).distance;
+      EXPECT_NEAR(d, rc::kSpeculativeDistance, 1e-3f) << i;
+      continue;
+    }
+    EXPECT_NEAR(deepest(m1), deepest(m2), 2e-4f) << i;
+  }
+}
+
+TEST(Manifold, ShapesFarFromTheOriginBehaveAsAtTheOrigin) {
+  rc::Shape box = rc::makeOrientedBox(0.5f, 0.5f);
+  for (float far : {0.0f, 1e3f, 1e4f}) {
+    rc::Transform ground{{far, far - 1.0f}, {}};
+    rc::Transform body{{far + 0.1f, far - 0.002f}, rc::Rot::fromAngle(0.001f)};
+    rc::Manifold m = rc::collide(rc::makeOrientedBox(5, 0.5f), ground, box, body);
+    ASSERT_EQ(m.pointCount, 2) << far;
+    EXPECT_NEAR(deepest(m), -0.002f - 0.5f * std::sin(0.001f), 1e-3f) << far;
+  }
+}
+
+TEST(Manifold, FeatureIdsStableUnderSmallMotion) {
+  rc::Shape ground = rc::makeOrientedBox(5, 0.5f), box = rc::makeOrientedBox(0.5f, 0.5f);
+  rc::Manifold prev = rc::collide(ground, {{0, -0.5f}, {}}, box, {{0, 0.49f}, {}});
+  ASSERT_EQ(prev.pointCount, 2);
+  for (int step = 1; step < 100; ++step) {
+    rc::Transform body{{0.01f * static_cast<float>(step), 0.49f},
+                       rc::Rot::fromAngle(0.0005f * static_cast<float>(step % 3))};
+    rc::Manifold m = rc::collide(ground, {{0, -0.5f}, {}}, box, body);
+    ASSERT_EQ(m.pointCount, 2);
+    EXPECT_EQ(m.points[0].id, prev.points[0].id);
+    EXPECT_EQ(m.points[1].id, prev.points[1].id);
+    prev = m;
+  }
+}
+
+// A box sliding across a flat floor made of links must only ever see the floor's normal.
+// The same floor made of independent segments catches the box's corner on the joints (a ghost
+// collision), which shows this test can fail.
+TEST(Manifold, FlatChainHasNoGhostCollisions) {
+  // Right to left, so each link's right side (its collision side) faces up.
+  std::vector<Vec2> pts = {{4, 0}, {3, 0}, {2, 0}, {1, 0}, {0, 0}};
+  auto links = rc::makeChain(pts, false, true);
+  rc::Shape box = rc::makeOrientedBox(0.25f, 0.25f);
+  int ghostsWithSegments = 0, contacts = 0;
+  for (int k = 0; k <= 300; ++k) {
+    rc::Transform body{{0.5f + 0.01f * static_cast<float>(k), 0.25f - 0.003f}, {}};
+    for (const rc::ChainSegment& link : links) {
+      rc::Manifold m = rc::collide(link, {}, box, body);
+      if (m.pointCount > 0) {
+        ++contacts;
+        EXPECT_NEAR(m.normal.y, 1.0f, 1e-6f) << "x " << body.p.x;
+      }
+      rc::Manifold plain = rc::collide(rc::Shape(link.segment), {}, box, body);
+      if (plain.pointCount > 0 && plain.normal.y < 0.99f) ++ghostsWithSegments;
+    }
+  }
+  EXPECT_GT(contacts, 300);
+  EXPECT_GT(ghostsWithSegments, 0);
+}
+
+TEST(Manifold, ConvexChainCornerKeepsTheCornerNormal) {
+  // A counter-clockwise square loop: its outside is the links' right side.
+  std::vector<Vec2> pts = {{0, 0}, {2, 0}, {2, 2}, {0, 2}};
+  auto links = rc::makeChain(pts, true, true);
+  rc::Shape circle = rc::makeCircle({}, 0.5f);
+  rc::Transform c{{2.3f, 2.3f}, {}};  // diagonally off the corner (2, 2)
+  int reported = 0;
+  for (const rc::ChainSegment& link : links) {
+    rc::Manifold m = rc::collide(link, {}, circle, c);
+    if (m.pointCount == 0) continue;
+    ++reported;
+    EXPECT_NEAR(m.normal.x, std::sqrt(0.5f), 1e-5f);
+    EXPECT_NEAR(m.normal.y, std::sqrt(0.5f), 1e-5f);
+  }
+  EXPECT_GE(reported, 1);
+  // One-sided: a circle inside the loop collides with nothing.
+  for (const rc::ChainSegment& link : links)
+    EXPECT_EQ(rc::collide(link, {}, circle, {{1.0f, 0.3f}, {}}).pointCount, 0);
+}
+
+TEST(Manifold, UnregisteredPairFailsLoudly) {
+  rc::Shape s = rc::makeSegment({0, 0}, {1, 0});
+  EXPECT_THROW(rc::collide(s, {}, s, {}), rc::UnsupportedPair);
+  EXPECT_FALSE(rc::hasManifold(rc::ShapeType::segment, rc::ShapeType::chainSegment));
+  EXPECT_TRUE(rc::hasManifold(rc::ShapeType::chainSegment, rc::ShapeType::polygon));
+  // Overlap is defined for every pair, segments included.
+  EXPECT_TRUE(rc::testOverlap(s, {}, rc::makeSegment({0.5f, -1}, {0.5f, 1}), {}));
+}
+
+TEST(Overlap, AgreesWithDistanceForEveryPair) {
+  rc::Random rng(26);
+  for (int i = 0; i < 20000; ++i) {
+    Kind ka = static_cast<Kind>(rng.below(7)), kb = static_cast<Kind>(rng.below(7));
+    rc::Shape a = rc::testing::randomShape(rng, ka), b = rc::testing::randomShape(rng, kb);
+    rc::Transform xa = rc::testing::randomTransform(rng, {}, 1.0f);
+    rc::Transform xb = rc::testing::randomTransform(rng, {}, 1.0f);
+    double truth = bestGap(a, xa, b, xb);
+    if (std::fabs(truth) < 1e-4) continue;  // the touching band
+    EXPECT_EQ(rc::testOverlap(a, xa, b, xb), truth < 0)
+        << rc::testing::kindName(ka) << " vs " << rc::testing::kindName(kb) << " " << i;
+  }
+}
+
+}  // namespace

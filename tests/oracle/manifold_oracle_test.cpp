@@ -21,6 +21,7 @@
 
 #include "physics/collide.h"
 #include "physics/distance.h"
+#include "support/box2d_adapter.h"
 #include "support/random_shapes.h"
 
 namespace {
@@ -28,59 +29,17 @@ namespace {
 using rc::Vec2;
 using rc::testing::Kind;
 
-b2Transform toB2(const rc::Transform& xf) {
-  b2Transform t;
-  t.p.Set(xf.p.x, xf.p.y);
-  t.q.c = xf.q.c;
-  t.q.s = xf.q.s;
-  return t;
-}
+using rc::testing::Box2DShape;
+using rc::testing::toB2;
 
-// The oracle's twin of one of our shapes. Circles keep their radius; polygons and edges lose the
-// skin (see the top of the file).
-struct Oracle {
-  b2CircleShape circle;
-  b2PolygonShape polygon;
-  b2EdgeShape edge;
-  b2Shape::Type type;
-};
-
-Oracle toB2(const rc::Shape& s) {
-  Oracle o;
-  switch (s.type) {
-    case rc::ShapeType::circle:
-      o.type = b2Shape::e_circle;
-      o.circle.m_p.Set(s.circle.center.x, s.circle.center.y);
-      o.circle.m_radius = s.circle.radius;
-      break;
-    case rc::ShapeType::box:
-      o.type = b2Shape::e_polygon;
-      o.polygon.SetAsBox(s.box.halfExtents.x, s.box.halfExtents.y, {s.box.center.x, s.box.center.y},
-                         0.0f);
-      o.polygon.m_radius = 0.0f;
-      break;
-    case rc::ShapeType::polygon: {
-      o.type = b2Shape::e_polygon;
-      b2Vec2 v[b2_maxPolygonVertices];
-      for (int i = 0; i < s.polygon.count; ++i)
-        v[i].Set(s.polygon.vertices[i].x, s.polygon.vertices[i].y);
-      o.polygon.Set(v, s.polygon.count);
-      o.polygon.m_radius = 0.0f;
-      break;
-    }
-    case rc::ShapeType::segment:
-      o.type = b2Shape::e_edge;
-      o.edge.SetTwoSided({s.segment.point1.x, s.segment.point1.y},
-                         {s.segment.point2.x, s.segment.point2.y});
-      o.edge.m_radius = 0.0f;
-      break;
-    default:
-      ADD_FAILURE() << "no oracle for " << rc::shapeTypeName(s.type);
-  }
+// The oracle's twin of one of our shapes (see the skin note at the top of the file).
+Box2DShape oracleOf(const rc::Shape& s) {
+  Box2DShape o;
+  if (!toB2(s, &o)) ADD_FAILURE() << "no oracle for " << rc::shapeTypeName(s.type);
   return o;
 }
 
-b2Manifold oracleCollide(const Oracle& a, const b2Transform& xa, const Oracle& b,
+b2Manifold oracleCollide(const Box2DShape& a, const b2Transform& xa, const Box2DShape& b,
                          const b2Transform& xb) {
   b2Manifold m;
   m.pointCount = 0;
@@ -128,7 +87,7 @@ TEST_P(ManifoldOracle, AgreesWithBox2D) {
     rc::Transform xb = rc::testing::randomTransform(rng, {}, 0.6f, pc.b != Kind::box);
     if (pc.a == Kind::box && pc.b == Kind::box && (i & 1))
       xb.q = rc::Rot::fromAngle(rng.uniform(-3, 3));
-    Oracle oa = toB2(a), ob = toB2(b);
+    Box2DShape oa = oracleOf(a), ob = oracleOf(b);
     b2Transform ba = toB2(xa), bb = toB2(xb);
     b2Manifold bm = oracleCollide(oa, ba, ob, bb);
     rc::Manifold ours = rc::collide(a, xa, b, xb);
@@ -142,13 +101,7 @@ TEST_P(ManifoldOracle, AgreesWithBox2D) {
         // Box2D 2.4.1 returns no manifold when clipping leaves fewer than two points (an
         // incident edge past the end of the reference face). Its own distance routine must then
         // confirm the overlap, and such misses must be rare.
-        const b2Shape* sa = oa.type == b2Shape::e_circle ? static_cast<const b2Shape*>(&oa.circle)
-                            : oa.type == b2Shape::e_polygon
-                                ? static_cast<const b2Shape*>(&oa.polygon)
-                                : static_cast<const b2Shape*>(&oa.edge);
-        const b2Shape* sb = ob.type == b2Shape::e_circle ? static_cast<const b2Shape*>(&ob.circle)
-                                                         : static_cast<const b2Shape*>(&ob.polygon);
-        EXPECT_TRUE(b2TestOverlap(sa, 0, sb, 0, ba, bb)) << what;
+        EXPECT_TRUE(b2TestOverlap(oa.get(), 0, ob.get(), 0, ba, bb)) << what;
         ++oracleMisses;
       }
       continue;

@@ -1,0 +1,93 @@
+// Our shapes and transforms as Box2D 2.4.1 objects, for the oracle tests and the benchmarks.
+//
+// Skin: Box2D 2.4.1 gives every polygon and edge a radius of b2_polygonRadius (0.01 m). The
+// adapter sets m_radius = 0 on polygons and edges after building them, so both engines describe
+// the same sharp shapes and do the same work.
+#pragma once
+
+#include <box2d/b2_distance.h>
+#include <box2d/box2d.h>
+
+#include "physics/distance.h"
+#include "physics/shapes.h"
+
+namespace rc::testing {
+
+inline b2Transform toB2(const Transform& xf) {
+  b2Transform t;
+  t.p.Set(xf.p.x, xf.p.y);
+  t.q.c = xf.q.c;
+  t.q.s = xf.q.s;
+  return t;
+}
+
+struct Box2DShape {
+  b2CircleShape circle;
+  b2PolygonShape polygon;
+  b2EdgeShape edge;
+  b2Shape::Type type = b2Shape::e_circle;
+
+  const b2Shape* get() const {
+    switch (type) {
+      case b2Shape::e_circle:
+        return &circle;
+      case b2Shape::e_polygon:
+        return &polygon;
+      default:
+        return &edge;
+    }
+  }
+};
+
+// Returns false for shapes Box2D 2.4.1 has no type for (capsules, chain links).
+inline bool toB2(const Shape& s, Box2DShape* o) {
+  switch (s.type) {
+    case ShapeType::circle:
+      o->type = b2Shape::e_circle;
+      o->circle.m_p.Set(s.circle.center.x, s.circle.center.y);
+      o->circle.m_radius = s.circle.radius;
+      return true;
+    case ShapeType::box:
+      o->type = b2Shape::e_polygon;
+      o->polygon.SetAsBox(s.box.halfExtents.x, s.box.halfExtents.y,
+                          {s.box.center.x, s.box.center.y}, 0.0f);
+      o->polygon.m_radius = 0.0f;
+      return true;
+    case ShapeType::polygon: {
+      if (s.polygon.radius != 0.0f) return false;
+      o->type = b2Shape::e_polygon;
+      b2Vec2 v[b2_maxPolygonVertices];
+      for (int i = 0; i < s.polygon.count; ++i)
+        v[i].Set(s.polygon.vertices[i].x, s.polygon.vertices[i].y);
+      o->polygon.Set(v, s.polygon.count);
+      o->polygon.m_radius = 0.0f;
+      return true;
+    }
+    case ShapeType::segment:
+      o->type = b2Shape::e_edge;
+      o->edge.SetTwoSided({s.segment.point1.x, s.segment.point1.y},
+                          {s.segment.point2.x, s.segment.point2.y});
+      o->edge.m_radius = 0.0f;
+      return true;
+    default:
+      return false;
+  }
+}
+
+// A b2DistanceProxy over our core points and radius (no skin), for b2Distance and
+// b2TimeOfImpact. The proxy points into `points`: fill it in place and do not copy it.
+struct Box2DProxy {
+  b2Vec2 points[b2_maxPolygonVertices];
+  b2DistanceProxy proxy;
+
+  void set(const ShapeProxy& p) {
+    static_assert(kMaxPolygonVertices <= b2_maxPolygonVertices);
+    for (int i = 0; i < p.count; ++i)
+      points[i].Set(p.points[i].x, p.points[i].y);
+    proxy.m_vertices = points;
+    proxy.m_count = p.count;
+    proxy.m_radius = p.radius;
+  }
+};
+
+}  // namespace rc::testing

@@ -31,6 +31,12 @@ Manifold capsuleCircle(const Shape& a, const Transform& xa, const Shape& b, cons
 Manifold boxCircle(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb) {
   return collideBoxAndCircle(a.box, xa, b.circle, xb);
 }
+Manifold polygonCircle(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb) {
+  return collidePolygonAndCircle(a.polygon, xa, b.circle, xb);
+}
+Manifold segmentCircle(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb) {
+  return collideSegmentAndCircle(a.segment, xa, b.circle, xb);
+}
 Manifold boxes(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb) {
   return collideBoxes(a.box, xa, b.box, xb);
 }
@@ -109,6 +115,8 @@ struct Table {
     add(ShapeType::circle, ShapeType::circle, circles, overlapCircles);
     add(ShapeType::capsule, ShapeType::circle, capsuleCircle, overlapCapsuleCircle);
     add(ShapeType::box, ShapeType::circle, boxCircle, overlapBoxCircle);
+    add(ShapeType::polygon, ShapeType::circle, polygonCircle, overlapGjk);
+    add(ShapeType::segment, ShapeType::circle, segmentCircle, overlapGjk);
     add(ShapeType::box, ShapeType::box, boxes, overlapBoxes);
     // Zero-area pairs: overlap only (static geometry never needs a manifold with itself).
     add(ShapeType::segment, ShapeType::segment, nullptr, overlapSegments);

@@ -1,5 +1,6 @@
 #include "physics/distance.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace rc {
@@ -333,9 +334,12 @@ SegmentIntersection intersectSegments(Vec2 p1, Vec2 q1, Vec2 p2, Vec2 q2) {
   } else {
     double t = (qx * sy - qy * sx) / denom;
     double u = qr / denom;
-    if (t < 0.0 || t > 1.0 || u < 0.0 || u > 1.0) return out;
+    // The products are exact in double but their difference is rounded once, so a shared
+    // endpoint can come out at 1 + 1e-16: accept that band and clamp.
+    constexpr double kBand = 1e-12;
+    if (t < -kBand || t > 1.0 + kBand || u < -kBand || u > 1.0 + kBand) return out;
     out.hit = true;
-    out.fraction = static_cast<float>(t);
+    out.fraction = static_cast<float>(std::clamp(t, 0.0, 1.0));
   }
   double f = out.fraction;
   out.point = {static_cast<float>(p1.x + f * rx), static_cast<float>(p1.y + f * ry)};

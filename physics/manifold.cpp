@@ -19,7 +19,7 @@ struct Hull {
 };
 
 Hull twoPointHull(Vec2 a, Vec2 b, float radius) {
-  Hull h{};
+  Hull h;
   h.count = 2;
   h.radius = radius;
   h.v[0] = a;
@@ -30,55 +30,53 @@ Hull twoPointHull(Vec2 a, Vec2 b, float radius) {
   return h;
 }
 
-Hull makeHull(const Shape& s) {
-  Hull h{};
+// The shape as a hull placed by xf (B is built directly in A's frame: one pass, no copy).
+void makeHull(const Shape& s, const Transform& xf, Hull* out) {
+  Hull& h = *out;
   switch (s.type) {
     case ShapeType::circle:
       h.count = 1;
-      h.v[0] = h.centroid = s.circle.center;
+      h.v[0] = h.centroid = apply(xf, s.circle.center);
       h.radius = s.circle.radius;
-      return h;
+      return;
     case ShapeType::box: {
       Vec2 c = s.box.center, e = s.box.halfExtents;
+      Vec2 ax = rotate(xf.q, {1.0f, 0.0f}), ay = rotate(xf.q, {0.0f, 1.0f});
+      Vec2 wc = apply(xf, c), ex = e.x * ax, ey = e.y * ay;
       h.count = 4;
-      h.v[0] = {c.x - e.x, c.y - e.y};
-      h.v[1] = {c.x + e.x, c.y - e.y};
-      h.v[2] = {c.x + e.x, c.y + e.y};
-      h.v[3] = {c.x - e.x, c.y + e.y};
-      h.n[0] = {0.0f, -1.0f};
-      h.n[1] = {1.0f, 0.0f};
-      h.n[2] = {0.0f, 1.0f};
-      h.n[3] = {-1.0f, 0.0f};
-      h.centroid = c;
-      return h;
+      h.radius = 0.0f;
+      h.v[0] = wc - ex - ey;
+      h.v[1] = wc + ex - ey;
+      h.v[2] = wc + ex + ey;
+      h.v[3] = wc - ex + ey;
+      h.n[0] = -ay;
+      h.n[1] = ax;
+      h.n[2] = ay;
+      h.n[3] = -ax;
+      h.centroid = wc;
+      return;
     }
     case ShapeType::polygon:
       h.count = s.polygon.count;
       h.radius = s.polygon.radius;
       for (int i = 0; i < h.count; ++i) {
-        h.v[i] = s.polygon.vertices[i];
-        h.n[i] = s.polygon.normals[i];
+        h.v[i] = apply(xf, s.polygon.vertices[i]);
+        h.n[i] = rotate(xf.q, s.polygon.normals[i]);
       }
-      h.centroid = s.polygon.centroid;
-      return h;
+      h.centroid = apply(xf, s.polygon.centroid);
+      return;
     case ShapeType::capsule:
-      return twoPointHull(s.capsule.center1, s.capsule.center2, s.capsule.radius);
+      h = twoPointHull(apply(xf, s.capsule.center1), apply(xf, s.capsule.center2),
+                       s.capsule.radius);
+      return;
     case ShapeType::segment:
-      return twoPointHull(s.segment.point1, s.segment.point2, 0.0f);
+      h = twoPointHull(apply(xf, s.segment.point1), apply(xf, s.segment.point2), 0.0f);
+      return;
     case ShapeType::chainSegment:
-      return twoPointHull(s.chainSegment.segment.point1, s.chainSegment.segment.point2, 0.0f);
+      h = twoPointHull(apply(xf, s.chainSegment.segment.point1),
+                       apply(xf, s.chainSegment.segment.point2), 0.0f);
+      return;
   }
-  return h;
-}
-
-Hull transformed(const Hull& h, const Transform& xf) {
-  Hull out = h;
-  for (int i = 0; i < h.count; ++i) {
-    out.v[i] = apply(xf, h.v[i]);
-    out.n[i] = rotate(xf.q, h.n[i]);
-  }
-  out.centroid = apply(xf, h.centroid);
-  return out;
 }
 
 // A manifold in A's frame before it is placed in the world.
@@ -113,8 +111,15 @@ Manifold toWorld(const Local& m, const Transform& xfA, const Transform& xfB) {
   return out;
 }
 
-// Point c with radius rc against hull h (same frame). Normal from h towards the point.
-Local hullVsPoint(const Hull& h, Vec2 c, float rc) {
+// Point c with radius rc against the convex core (v, n, count) rounded by radius (same frame).
+// Normal from the hull towards the point.
+Local pointVsCore(const Vec2* v, const Vec2* n, int count, float radius, Vec2 c, float rc) {
+  struct {
+    const Vec2* v;
+    const Vec2* n;
+    int count;
+    float radius;
+  } h{v, n, count, radius};
   Local m;
   Vec2 normal;
   float dist;
@@ -166,6 +171,10 @@ Local hullVsPoint(const Hull& h, Vec2 c, float rc) {
   return m;
 }
 
+Local hullVsPoint(const Hull& h, Vec2 c, float rc) {
+  return pointVsCore(h.v, h.n, h.count, h.radius, c, rc);
+}
+
 // Largest separation of b from a over a's edge normals, and the edge that gives it.
 float maxSeparation(const Hull& a, const Hull& b, int* edge) {
   int best = 0;
@@ -208,8 +217,10 @@ Local collideLocal(const Hull& a, const Hull& b) {
   const float sep = flip ? sepB : sepA;
 
   // When the cores are apart, the face separation equals the true distance unless the closest
-  // features are two vertices; GJK tells which. A two-point hull has no faces at its ends, so
-  // its face separation can read zero for cores that are apart along its axis: check always.
+  // features are two vertices; GJK tells which. The face normals of both shapes are all the
+  // separating axes there are (they are the edge normals of the Minkowski difference) unless
+  // both are two-point hulls: two parallel segments apart along their common line have a
+  // degenerate difference whose end direction is no face normal. Check those always.
   SimplexCache cache;
   DistanceOutput gjk{};
   bool haveGjk = false;
@@ -231,7 +242,7 @@ Local collideLocal(const Hull& a, const Hull& b) {
     m.add(mulAdd(d.pointA, a.radius + 0.5f * s, d.normal), s, id);
     return m;
   };
-  if (sep > 0.1f * kLinearSlop || a.count == 2 || b.count == 2) {
+  if (sep > 0.1f * kLinearSlop || (a.count == 2 && b.count == 2)) {
     const DistanceOutput& d = coreDistance();
     if (d.distance > 0.1f * kLinearSlop && d.distance > sep + 0.01f * kLinearSlop)
       return vertexContact();
@@ -303,40 +314,72 @@ Local collideLocal(const Hull& a, const Hull& b) {
 
 Manifold collideCircles(const Circle& a, const Transform& xfA, const Circle& b,
                         const Transform& xfB) {
-  Transform rel = invMul(xfA, xfB);
-  Vec2 cB = apply(rel, b.center);
-  Vec2 d = cB - a.center;
-  float dist = length(d);
+  // In the world frame: two point transforms, no relative transform to build.
+  Vec2 offsetA = rotate(xfA.q, a.center), offsetB = rotate(xfB.q, b.center);
+  Vec2 d = (xfB.p - xfA.p) + (offsetB - offsetA);
+  float dist2 = lengthSquared(d);
+  float reach = a.radius + b.radius + kSpeculativeDistance;
+  if (dist2 > reach * reach) return Manifold{};
+  float dist = std::sqrt(dist2);
   float sep = dist - a.radius - b.radius;
-  if (sep > kSpeculativeDistance) return Manifold{};
-  Local m;
+  Manifold m;
   m.normal = dist > 0.0f ? (1.0f / dist) * d : Vec2{0.0f, 1.0f};
-  m.add(mulAdd(a.center, a.radius + 0.5f * sep, m.normal), sep, 0);
-  return toWorld(m, xfA, xfB);
+  m.pointCount = 1;
+  ManifoldPoint& mp = m.points[0];
+  mp.anchorA = mulAdd(offsetA, a.radius + 0.5f * sep, m.normal);
+  mp.anchorB = mp.anchorA + (xfA.p - xfB.p);
+  mp.point = mp.anchorA + xfA.p;
+  mp.separation = sep;
+  mp.id = 0;
+  return m;
+}
+
+Manifold collidePolygonAndCircle(const Polygon& a, const Transform& xfA, const Circle& b,
+                                 const Transform& xfB) {
+  Vec2 c = invApply(xfA, apply(xfB, b.center));
+  return toWorld(pointVsCore(a.vertices, a.normals, a.count, a.radius, c, b.radius), xfA, xfB);
+}
+
+Manifold collideSegmentAndCircle(const Segment& a, const Transform& xfA, const Circle& b,
+                                 const Transform& xfB) {
+  return collideCapsuleAndCircle(Capsule{a.point1, a.point2, 0.0f}, xfA, b, xfB);
 }
 
 Manifold collideCapsuleAndCircle(const Capsule& a, const Transform& xfA, const Circle& b,
                                  const Transform& xfB) {
-  Transform rel = invMul(xfA, xfB);
-  Vec2 c = apply(rel, b.center);
+  Vec2 c = invApply(xfA, apply(xfB, b.center));
   Vec2 e = a.center2 - a.center1;
-  float u = std::clamp(dot(c - a.center1, e) / lengthSquared(e), 0.0f, 1.0f);
-  Vec2 closest = mulAdd(a.center1, u, e);
-  Vec2 d = c - closest;
-  float dist = length(d);
+  float u = dot(c - a.center1, e);
+  float ee = lengthSquared(e);
+  Local m;
+  Vec2 closest;
+  float dist;
+  std::uint16_t id;
+  if (u > 0.0f && u < ee) {
+    // Beside the segment: the exact perpendicular, not a normalised difference that loses its
+    // direction when the centre is nearly on the segment.
+    Vec2 n = normalize(rightPerp(e));
+    float side = dot(c - a.center1, n);
+    m.normal = side >= 0.0f ? n : -n;
+    dist = std::fabs(side);
+    closest = mulSub(c, side, n);
+    id = 0;
+  } else {
+    closest = u <= 0.0f ? a.center1 : a.center2;
+    Vec2 d = c - closest;
+    dist = length(d);
+    m.normal = dist > 0.0f ? (1.0f / dist) * d : normalize(rightPerp(e));
+    id = u <= 0.0f ? 1 : 2;
+  }
   float sep = dist - a.radius - b.radius;
   if (sep > kSpeculativeDistance) return Manifold{};
-  Local m;
-  m.normal = dist > 0.0f ? (1.0f / dist) * d : normalize(rightPerp(e));
-  std::uint16_t id = u <= 0.0f ? 1 : (u >= 1.0f ? 2 : 0);
   m.add(mulAdd(closest, a.radius + 0.5f * sep, m.normal), sep, id);
   return toWorld(m, xfA, xfB);
 }
 
 Manifold collideBoxAndCircle(const Box& a, const Transform& xfA, const Circle& b,
                              const Transform& xfB) {
-  Transform rel = invMul(xfA, xfB);
-  Vec2 p = apply(rel, b.center) - a.center;
+  Vec2 p = invApply(xfA, apply(xfB, b.center)) - a.center;
   Vec2 h = a.halfExtents;
   Local m;
   Vec2 normal;
@@ -406,14 +449,16 @@ Manifold collideBoxes(const Box& a, const Transform& xfA, const Box& b, const Tr
 }
 
 Manifold collideHulls(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB) {
-  Hull ha = makeHull(a);
-  Hull hb = transformed(makeHull(b), invMul(xfA, xfB));
+  Hull ha, hb;
+  makeHull(a, Transform{}, &ha);
+  makeHull(b, invMul(xfA, xfB), &hb);
   return toWorld(collideLocal(ha, hb), xfA, xfB);
 }
 
 Manifold collideChainSegment(const ChainSegment& a, const Transform& xfA, const Shape& b,
                              const Transform& xfB) {
-  Hull hb = transformed(makeHull(b), invMul(xfA, xfB));
+  Hull hb;
+  makeHull(b, invMul(xfA, xfB), &hb);
   Vec2 p1 = a.segment.point1, p2 = a.segment.point2, g1 = a.ghost1, g2 = a.ghost2;
   Vec2 nR = normalize(rightPerp(p2 - p1));
   if (dot(hb.centroid - p1, nR) < 0.0f) {

@@ -43,6 +43,10 @@ Manifold collideCircles(const Circle& a, const Transform& xfA, const Circle& b,
                         const Transform& xfB);
 Manifold collideCapsuleAndCircle(const Capsule& a, const Transform& xfA, const Circle& b,
                                  const Transform& xfB);
+Manifold collidePolygonAndCircle(const Polygon& a, const Transform& xfA, const Circle& b,
+                                 const Transform& xfB);
+Manifold collideSegmentAndCircle(const Segment& a, const Transform& xfA, const Circle& b,
+                                 const Transform& xfB);
 Manifold collideBoxAndCircle(const Box& a, const Transform& xfA, const Circle& b,
                              const Transform& xfB);
 // Falls back to the polygon path when the two boxes are not aligned.

@@ -11,11 +11,13 @@
 
 namespace rc {
 
+// Trivially default-constructible like a plain struct of two floats: `Vec2 v;` is
+// uninitialised (arrays of vertices cost nothing to declare), `Vec2 v{};` is zero.
 struct Vec2 {
-  float x = 0.0f;
-  float y = 0.0f;
+  float x;
+  float y;
 
-  constexpr Vec2() = default;
+  Vec2() = default;
   constexpr Vec2(float x_, float y_) : x(x_), y(y_) {}
 
   constexpr Vec2 operator-() const { return {-x, -y}; }

@@ -252,8 +252,11 @@ DistanceOutput shapeDistance(const ShapeProxy& a, const Transform& xfA, const Sh
     pB = mulSub(pB, b.radius, n);
     out.distance = coreDistance - radii;
   } else {
-    // Overlap: report the point between the two surfaces along the core direction.
-    Vec2 p = mulAdd(pA, 0.5f * (a.radius - b.radius + coreDistance), n);
+    // Overlap: the middle of the stretch of the core line inside both shapes, so the point
+    // lies in both even when one radius dwarfs the other.
+    float lo = std::max(-a.radius, coreDistance - b.radius);
+    float hi = std::min(a.radius, coreDistance + b.radius);
+    Vec2 p = mulAdd(pA, 0.5f * (lo + hi), n);
     pA = pB = p;
     out.distance = 0.0f;
   }
@@ -313,7 +316,7 @@ SegmentDistanceResult segmentDistance(Vec2 p1, Vec2 q1, Vec2 p2, Vec2 q2) {
 }
 
 SegmentIntersection intersectSegments(Vec2 p1, Vec2 q1, Vec2 p2, Vec2 q2) {
-  // In double: cross products of float differences are exact, so the orientation tests are right
+  // In double, so the orientation tests keep their digits
   // even for segments 1e-8 rad from parallel.
   double rx = static_cast<double>(q1.x) - p1.x, ry = static_cast<double>(q1.y) - p1.y;
   double sx = static_cast<double>(q2.x) - p2.x, sy = static_cast<double>(q2.y) - p2.y;
@@ -324,7 +327,19 @@ SegmentIntersection intersectSegments(Vec2 p1, Vec2 q1, Vec2 p2, Vec2 q2) {
   if (denom == 0.0) {
     if (qr != 0.0) return out;  // parallel, apart
     double rr = rx * rx + ry * ry;
-    if (rr == 0.0) return out;
+    if (rr == 0.0) {
+      // The first segment is a point: on the second segment (or equal to it when both are)?
+      double ss = sx * sx + sy * sy;
+      double px = -qx, py = -qy;  // p1 - p2
+      bool on = ss == 0.0 ? (px == 0.0 && py == 0.0)
+                          : (px * sy - py * sx == 0.0 && px * sx + py * sy >= 0.0 &&
+                             px * sx + py * sy <= ss);
+      if (!on) return out;
+      out.hit = true;
+      out.fraction = 0.0f;
+      out.point = p1;
+      return out;
+    }
     double t0 = (qx * rx + qy * ry) / rr;
     double t1 = t0 + (sx * rx + sy * ry) / rr;
     double lo = std::max(0.0, std::min(t0, t1)), hi = std::min(1.0, std::max(t0, t1));
@@ -334,8 +349,9 @@ SegmentIntersection intersectSegments(Vec2 p1, Vec2 q1, Vec2 p2, Vec2 q2) {
   } else {
     double t = (qx * sy - qy * sx) / denom;
     double u = qr / denom;
-    // The products are exact in double but their difference is rounded once, so a shared
-    // endpoint can come out at 1 + 1e-16: accept that band and clamp.
+    // Differences of floats of different magnitudes carry up to ~30 bits, so the products are
+    // not always exact in double and a shared endpoint can come out at 1 + 2e-16: accept a
+    // 1e-12 band and clamp.
     constexpr double kBand = 1e-12;
     if (t < -kBand || t > 1.0 + kBand || u < -kBand || u > 1.0 + kBand) return out;
     out.hit = true;
@@ -347,24 +363,33 @@ SegmentIntersection intersectSegments(Vec2 p1, Vec2 q1, Vec2 p2, Vec2 q2) {
 }
 
 bool trianglesOverlap(const Vec2 a[3], const Vec2 b[3]) {
-  // Separating axis theorem over the six edge normals, in double for exact orientation.
-  auto separated = [](const Vec2* p, const Vec2* q) {
-    for (int i = 0; i < 3; ++i) {
-      double nx = -(static_cast<double>(p[(i + 1) % 3].y) - p[i].y);
-      double ny = static_cast<double>(p[(i + 1) % 3].x) - p[i].x;
-      double minP = 1e300, maxP = -1e300, minQ = 1e300, maxQ = -1e300;
-      for (int k = 0; k < 3; ++k) {
-        double vp = nx * p[k].x + ny * p[k].y, vq = nx * q[k].x + ny * q[k].y;
-        minP = std::min(minP, vp);
-        maxP = std::max(maxP, vp);
-        minQ = std::min(minQ, vq);
-        maxQ = std::max(maxQ, vq);
-      }
-      if (maxP < minQ || maxQ < minP) return true;
+  // Separating axis theorem, in double for exact orientation. The six edge normals suffice for
+  // triangles with area; degenerate ones (segments, points) also need the edge directions and
+  // the line between the two centroids, which are tested too (a separating axis found among
+  // extra axes is still a valid one).
+  auto separatedOn = [&](double nx, double ny) {
+    double minP = 1e300, maxP = -1e300, minQ = 1e300, maxQ = -1e300;
+    for (int k = 0; k < 3; ++k) {
+      double vp = nx * a[k].x + ny * a[k].y, vq = nx * b[k].x + ny * b[k].y;
+      minP = std::min(minP, vp);
+      maxP = std::max(maxP, vp);
+      minQ = std::min(minQ, vq);
+      maxQ = std::max(maxQ, vq);
     }
-    return false;
+    return maxP < minQ || maxQ < minP;
   };
-  return !separated(a, b) && !separated(b, a);
+  for (const Vec2* t : {a, b}) {
+    for (int i = 0; i < 3; ++i) {
+      double ex = static_cast<double>(t[(i + 1) % 3].x) - t[i].x;
+      double ey = static_cast<double>(t[(i + 1) % 3].y) - t[i].y;
+      if (separatedOn(-ey, ex) || separatedOn(ex, ey)) return false;
+    }
+  }
+  double cx = (static_cast<double>(b[0].x) + b[1].x + b[2].x) -
+              (static_cast<double>(a[0].x) + a[1].x + a[2].x);
+  double cy = (static_cast<double>(b[0].y) + b[1].y + b[2].y) -
+              (static_cast<double>(a[0].y) + a[1].y + a[2].y);
+  return !separatedOn(cx, cy);
 }
 
 float circlePlaneSeparation(Vec2 center, float radius, Vec2 n, float d) {

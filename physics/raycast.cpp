@@ -174,17 +174,66 @@ CastOutput rayCast(const Capsule& s, const RayCastInput& in) {
 }
 
 CastOutput rayCast(const Segment& s, const RayCastInput& in, bool oneSided) {
-  Vec2 n = normalize(rightPerp(s.point2 - s.point1));
-  CastOutput out = castSegmentSide(s.point1, s.point2, n, in);
-  if (out.hit || oneSided) return out;
-  return castSegmentSide(s.point1, s.point2, -n, in);
+  // One pass: the face the ray can hit is the one whose normal opposes it.
+  Vec2 e = s.point2 - s.point1;
+  Vec2 n = normalize(rightPerp(e));
+  float denom = dot(n, in.translation);
+  if (denom == 0.0f) return {};  // parallel
+  if (denom > 0.0f) {
+    if (oneSided) return {};  // from behind a one-sided link
+    n = -n;
+    denom = -denom;
+  }
+  float num = dot(n, s.point1 - in.origin);
+  if (num > 0.0f) return {};  // starts behind the face
+  float t = num / denom;
+  if (t > in.maxFraction) return {};
+  Vec2 p = mulAdd(in.origin, t, in.translation);
+  float u = dot(p - s.point1, e);
+  if (u < 0.0f || u > lengthSquared(e)) return {};
+  CastOutput out;
+  out.hit = true;
+  out.fraction = t;
+  out.point = p;
+  out.normal = n;
+  return out;
 }
 
 CastOutput rayCast(const ChainSegment& s, const RayCastInput& in) {
   return rayCast(s.segment, in, s.oneSided);
 }
 
+// A circle cast without the round trip through the shape's frame. The centre is taken relative
+// to the ray origin as (p - origin) + R c, which stays exact when both are 1e4 m out, and the
+// chord is found from the perpendicular distance to a unit direction (no b^2 - ac cancellation
+// on long rays).
+CastOutput rayCastCircleWorld(const Circle& c, const Transform& xf, const RayCastInput& in) {
+  Vec2 s = (xf.p - in.origin) + rotate(xf.q, c.center);
+  float r2 = c.radius * c.radius;
+  if (lengthSquared(s) <= r2) return startsInside(in);
+  float length = rc::length(in.translation);
+  if (length == 0.0f) return {};
+  Vec2 dir = (1.0f / length) * in.translation;
+  float tc = dot(s, dir);
+  if (tc <= 0.0f) return {};  // behind the origin, which is outside
+  Vec2 perp = mulSub(s, tc, dir);
+  float h2 = r2 - lengthSquared(perp);
+  if (h2 < 0.0f) return {};
+  float h = std::sqrt(h2);
+  float t = tc - h;
+  if (t < 0.0f || t > in.maxFraction * length) return {};
+  CastOutput out;
+  out.hit = true;
+  out.fraction = t / length;
+  out.point = mulAdd(in.origin, out.fraction, in.translation);
+  // hit - centre = t dir - s = -(perp + h dir), from small terms only. On rays 1e4 m long perp
+  // still carries the inputs' rounding, so normalise rather than divide by the radius.
+  out.normal = -normalize(mulAdd(perp, h, dir));
+  return out;
+}
+
 CastOutput rayCast(const Shape& s, const Transform& xf, const RayCastInput& in) {
+  if (s.type == ShapeType::circle) return rayCastCircleWorld(s.circle, xf, in);
   RayCastInput local{invApply(xf, in.origin), invRotate(xf.q, in.translation), in.maxFraction};
   CastOutput out;
   switch (s.type) {

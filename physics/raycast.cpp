@@ -232,8 +232,39 @@ CastOutput rayCastCircleWorld(const Circle& c, const Transform& xf, const RayCas
   return out;
 }
 
+// A segment cast in the world frame, with the endpoints taken relative to the ray origin
+// ((p - origin) + R v stays exact far from the world origin).
+CastOutput rayCastSegmentWorld(const Segment& g, bool oneSided, const Transform& xf,
+                               const RayCastInput& in) {
+  Vec2 v1 = (xf.p - in.origin) + rotate(xf.q, g.point1);
+  Vec2 e = rotate(xf.q, g.point2 - g.point1);
+  Vec2 n = normalize(rightPerp(e));
+  float denom = dot(n, in.translation);
+  if (denom == 0.0f) return {};
+  if (denom > 0.0f) {
+    if (oneSided) return {};
+    n = -n;
+    denom = -denom;
+  }
+  float num = dot(n, v1);
+  if (num > 0.0f) return {};
+  float t = num / denom;
+  if (t > in.maxFraction) return {};
+  float u = dot(mulSub(t * in.translation, 1.0f, v1), e);
+  if (u < 0.0f || u > lengthSquared(e)) return {};
+  CastOutput out;
+  out.hit = true;
+  out.fraction = t;
+  out.point = mulAdd(in.origin, t, in.translation);
+  out.normal = n;
+  return out;
+}
+
 CastOutput rayCast(const Shape& s, const Transform& xf, const RayCastInput& in) {
   if (s.type == ShapeType::circle) return rayCastCircleWorld(s.circle, xf, in);
+  if (s.type == ShapeType::segment) return rayCastSegmentWorld(s.segment, false, xf, in);
+  if (s.type == ShapeType::chainSegment)
+    return rayCastSegmentWorld(s.chainSegment.segment, s.chainSegment.oneSided, xf, in);
   RayCastInput local{invApply(xf, in.origin), invRotate(xf.q, in.translation), in.maxFraction};
   CastOutput out;
   switch (s.type) {

@@ -68,6 +68,100 @@ bool overlapGjk(const Shape& a, const Transform& xa, const Shape& b, const Trans
   if (distanceSquared(apply(xa, ba.center), apply(xb, bb.center)) > r * r) return false;
   return shapeDistance(a, xa, b, xb).distance <= 0.0f;
 }
+// Sharp convex polygons (boxes and polygons without rounding): the separating axis test on the
+// face normals of both, stopping at the first axis that separates. Cheaper than GJK here and
+// exact (the face normals are the only candidate axes for two convex polygons with area).
+struct SharpCore {
+  Vec2 v[kMaxPolygonVertices];
+  Vec2 n[kMaxPolygonVertices];
+  int count;
+};
+void sharpCore(const Shape& s, const Transform& xf, SharpCore* out) {
+  if (s.type == ShapeType::box) {
+    Vec2 c = s.box.center, e = s.box.halfExtents;
+    Vec2 ax = rotate(xf.q, {1.0f, 0.0f}), ay = rotate(xf.q, {0.0f, 1.0f});
+    Vec2 wc = apply(xf, c), ex = e.x * ax, ey = e.y * ay;
+    out->count = 4;
+    out->v[0] = wc - ex - ey;
+    out->v[1] = wc + ex - ey;
+    out->v[2] = wc + ex + ey;
+    out->v[3] = wc - ex + ey;
+    out->n[0] = -ay;
+    out->n[1] = ax;
+    out->n[2] = ay;
+    out->n[3] = -ax;
+    return;
+  }
+  if (s.type == ShapeType::segment) {
+    // A segment is a two-sided face; with a partner that has area, its normal and the
+    // partner's face normals are every candidate axis.
+    out->count = 2;
+    out->v[0] = apply(xf, s.segment.point1);
+    out->v[1] = apply(xf, s.segment.point2);
+    out->n[0] = normalize(rightPerp(out->v[1] - out->v[0]));
+    out->n[1] = -out->n[0];
+    return;
+  }
+  const Polygon& p = s.polygon;
+  out->count = p.count;
+  for (int i = 0; i < p.count; ++i) {
+    out->v[i] = apply(xf, p.vertices[i]);
+    out->n[i] = rotate(xf.q, p.normals[i]);
+  }
+}
+bool separatedByFaces(const SharpCore& a, const SharpCore& b) {
+  for (int i = 0; i < a.count; ++i) {
+    float best = 1e30f;
+    for (int j = 0; j < b.count; ++j)
+      best = std::min(best, dot(a.n[i], b.v[j] - a.v[i]));
+    if (best > 0.0f) return true;
+  }
+  return false;
+}
+bool overlapSharpPolygons(const Shape& a, const Transform& xa, const Shape& b,
+                          const Transform& xb) {
+  bool roundedA = a.type == ShapeType::polygon && a.polygon.radius > 0.0f;
+  bool roundedB = b.type == ShapeType::polygon && b.polygon.radius > 0.0f;
+  if (roundedA || roundedB) return shapeDistance(a, xa, b, xb).distance <= 0.0f;
+  SharpCore ca, cb;
+  sharpCore(a, Transform{}, &ca);
+  sharpCore(b, invMul(xa, xb), &cb);
+  return !separatedByFaces(ca, cb) && !separatedByFaces(cb, ca);
+}
+
+bool overlapPolygonCircle(const Shape& a, const Transform& xa, const Shape& b,
+                          const Transform& xb) {
+  // Distance from the centre to the core: the face of largest separation, or the vertex at
+  // either end of it when the centre projects past that face (exact for convex polygons).
+  const Polygon& p = a.polygon;
+  Vec2 c = invApply(xa, apply(xb, b.circle.center));
+  float r = p.radius + b.circle.radius;
+  int best = 0;
+  float maxSep = -1e30f;
+  for (int i = 0; i < p.count; ++i) {
+    float sep = dot(p.normals[i], c - p.vertices[i]);
+    if (sep > r) return false;
+    if (sep > maxSep) {
+      maxSep = sep;
+      best = i;
+    }
+  }
+  if (maxSep <= 0.0f) return true;
+  Vec2 v1 = p.vertices[best], v2 = p.vertices[(best + 1) % p.count];
+  Vec2 e = v2 - v1;
+  float u = dot(c - v1, e);
+  if (u <= 0.0f) return distanceSquared(c, v1) <= r * r;
+  if (u >= lengthSquared(e)) return distanceSquared(c, v2) <= r * r;
+  return true;  // beside the face, and maxSep <= r
+}
+bool overlapSegmentCircle(const Shape& a, const Transform& xa, const Shape& b,
+                          const Transform& xb) {
+  Vec2 c = invApply(xa, apply(xb, b.circle.center));
+  Vec2 p = a.segment.point1, e = a.segment.point2 - p;
+  float u = std::clamp(dot(c - p, e) / lengthSquared(e), 0.0f, 1.0f);
+  return distanceSquared(c, mulAdd(p, u, e)) <= b.circle.radius * b.circle.radius;
+}
+
 bool overlapBoxes(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb) {
   Transform rel = invMul(xa, xb);
   if (!rel.q.isIdentity()) {
@@ -115,8 +209,12 @@ struct Table {
     add(ShapeType::circle, ShapeType::circle, circles, overlapCircles);
     add(ShapeType::capsule, ShapeType::circle, capsuleCircle, overlapCapsuleCircle);
     add(ShapeType::box, ShapeType::circle, boxCircle, overlapBoxCircle);
-    add(ShapeType::polygon, ShapeType::circle, polygonCircle, overlapGjk);
-    add(ShapeType::segment, ShapeType::circle, segmentCircle, overlapGjk);
+    add(ShapeType::polygon, ShapeType::circle, polygonCircle, overlapPolygonCircle);
+    add(ShapeType::segment, ShapeType::circle, segmentCircle, overlapSegmentCircle);
+    add(ShapeType::box, ShapeType::polygon, collideHulls, overlapSharpPolygons);
+    add(ShapeType::segment, ShapeType::polygon, collideHulls, overlapSharpPolygons);
+    add(ShapeType::segment, ShapeType::box, collideHulls, overlapSharpPolygons);
+    add(ShapeType::polygon, ShapeType::polygon, collideHulls, overlapSharpPolygons);
     add(ShapeType::box, ShapeType::box, boxes, overlapBoxes);
     // Zero-area pairs: overlap only (static geometry never needs a manifold with itself).
     add(ShapeType::segment, ShapeType::segment, nullptr, overlapSegments);

@@ -191,12 +191,12 @@ bool overlapSegments(const Shape& a, const Transform& xa, const Shape& b, const 
 struct Table {
   std::array<std::array<Entry, kShapeTypeCount>, kShapeTypeCount> e{};
 
-  void add(ShapeType a, ShapeType b, ManifoldFn m, OverlapFn o) {
+  constexpr void add(ShapeType a, ShapeType b, ManifoldFn m, OverlapFn o) {
     e[index(a)][index(b)] = {m, o, false};
     if (a != b) e[index(b)][index(a)] = {m, o, true};
   }
 
-  Table() {
+  constexpr Table() {
     constexpr ShapeType solids[] = {ShapeType::circle, ShapeType::box, ShapeType::polygon,
                                     ShapeType::capsule};
     // The general path first; specialised pairs overwrite it below.
@@ -223,9 +223,10 @@ struct Table {
   }
 };
 
-const Table& table() {
-  static const Table t;
-  return t;
+// Built at compile time: no initialisation guard on the per-pair path.
+constexpr Table kTable{};
+constexpr const Table& table() {
+  return kTable;
 }
 
 [[noreturn]] void unsupported(const char* what, ShapeType a, ShapeType b) {

@@ -131,8 +131,10 @@ Local pointVsCore(const Vec2* v, const Vec2* n, int count, float radius, Vec2 c,
   } else {
     int best = 0;
     float maxSep = -1e30f;
+    const float reach = h.radius + rc + kSpeculativeDistance;
     for (int i = 0; i < h.count; ++i) {
       float s = dot(h.n[i], c - h.v[i]);
+      if (s > reach) return m;  // a face farther than any contact reaches
       if (s > maxSep) {
         maxSep = s;
         best = i;
@@ -175,8 +177,9 @@ Local hullVsPoint(const Hull& h, Vec2 c, float rc) {
   return pointVsCore(h.v, h.n, h.count, h.radius, c, rc);
 }
 
-// Largest separation of b from a over a's edge normals, and the edge that gives it.
-float maxSeparation(const Hull& a, const Hull& b, int* edge) {
+// Largest separation of b from a over a's edge normals, and the edge that gives it. Stops at
+// the first face farther than `enough`: the shapes are then too far apart for a contact.
+float maxSeparation(const Hull& a, const Hull& b, float enough, int* edge) {
   int best = 0;
   float bestSep = -1e30f;
   for (int i = 0; i < a.count; ++i) {
@@ -186,6 +189,7 @@ float maxSeparation(const Hull& a, const Hull& b, int* edge) {
     if (s > bestSep) {
       bestSep = s;
       best = i;
+      if (s > enough) break;
     }
   }
   *edge = best;
@@ -203,10 +207,11 @@ Local collideLocal(const Hull& a, const Hull& b) {
   Local m;
   const float radii = a.radius + b.radius;
   int edgeA, edgeB;
-  float sepA = maxSeparation(a, b, &edgeA);
-  if (sepA > kSpeculativeDistance + radii) return m;
-  float sepB = maxSeparation(b, a, &edgeB);
-  if (sepB > kSpeculativeDistance + radii) return m;
+  const float reach = kSpeculativeDistance + radii;
+  float sepA = maxSeparation(a, b, reach, &edgeA);
+  if (sepA > reach) return m;
+  float sepB = maxSeparation(b, a, reach, &edgeB);
+  if (sepB > reach) return m;
 
   // Prefer A's face unless B's is clearly better, so the reference face does not flicker
   // between two nearly equal choices from one step to the next.

@@ -25,17 +25,19 @@
 
 namespace rc {
 
+// Only points[0, pointCount) are set; the rest is left uninitialised (this runs for every
+// contact pair every step, so nothing is written that is not read).
 struct ManifoldPoint {
-  Vec2 point{};    // world point midway between the two surfaces
-  Vec2 anchorA{};  // point relative to A's origin (world orientation)
-  Vec2 anchorB{};  // point relative to B's origin (world orientation)
-  float separation = 0.0f;
-  std::uint16_t id = 0;
+  Vec2 point;    // world point midway between the two surfaces
+  Vec2 anchorA;  // point relative to A's origin (world orientation)
+  Vec2 anchorB;  // point relative to B's origin (world orientation)
+  float separation;
+  std::uint16_t id;
 };
 
 struct Manifold {
   Vec2 normal{};  // unit, from A to B
-  ManifoldPoint points[2]{};
+  ManifoldPoint points[2];
   int pointCount = 0;
 };
 

@@ -261,6 +261,20 @@ CastOutput rayCastSegmentWorld(const Segment& g, bool oneSided, const Transform&
 }
 
 CastOutput rayCast(const Shape& s, const Transform& xf, const RayCastInput& in) {
+  // Inputs near the float range: a shape whose offset from the ray origin overflows is farther
+  // than any representable ray reaches; a translation whose squared length overflows is cast
+  // scaled by an exact power of two and its fraction scaled back.
+  if (!isFinite(xf.p - in.origin)) return {};
+  if (!std::isfinite(lengthSquared(in.translation)) && isFinite(in.translation)) {
+    constexpr float kScale = 0x1p-70f;
+    RayCastInput scaled{in.origin, kScale * in.translation, in.maxFraction / kScale};
+    CastOutput out = rayCast(s, xf, scaled);
+    if (out.hit) {
+      out.fraction *= kScale;
+      out.point = mulAdd(in.origin, out.fraction, in.translation);
+    }
+    return out;
+  }
   if (s.type == ShapeType::circle) return rayCastCircleWorld(s.circle, xf, in);
   if (s.type == ShapeType::segment) return rayCastSegmentWorld(s.segment, false, xf, in);
   if (s.type == ShapeType::chainSegment)

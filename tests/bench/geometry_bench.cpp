@@ -230,10 +230,10 @@ class RatioReporter : public benchmark::ConsoleReporter {
       std::string name = r.run_name.function_name;
       size_t slash = name.rfind('/');
       std::string key = name.substr(0, slash), engine = name.substr(slash + 1);
-      double ns = r.GetAdjustedRealTime() * 1e9 / static_cast<double>(kCases);
-      if (r.time_unit == benchmark::kNanosecond) ns = r.GetAdjustedRealTime() / kCases;
-      if (r.time_unit == benchmark::kMicrosecond) ns = r.GetAdjustedRealTime() * 1e3 / kCases;
-      if (r.time_unit == benchmark::kMillisecond) ns = r.GetAdjustedRealTime() * 1e6 / kCases;
+      double ns = r.GetAdjustedCPUTime() * 1e9 / static_cast<double>(kCases);
+      if (r.time_unit == benchmark::kNanosecond) ns = r.GetAdjustedCPUTime() / kCases;
+      if (r.time_unit == benchmark::kMicrosecond) ns = r.GetAdjustedCPUTime() * 1e3 / kCases;
+      if (r.time_unit == benchmark::kMillisecond) ns = r.GetAdjustedCPUTime() * 1e6 / kCases;
       (engine == "ours" ? ours_ : box2d_)[key] = ns;
       order_.push_back(key);
     }

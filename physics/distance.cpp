@@ -203,6 +203,7 @@ DistanceOutput shapeDistance(const ShapeProxy& a, const Transform& xfA, const Sh
 
   constexpr int kMaxIterations = 24;
   int iter = 0;
+  bool solved = false;
   while (iter < kMaxIterations) {
     int savedA[3], savedB[3];
     int savedCount = s.count;
@@ -212,6 +213,7 @@ DistanceOutput shapeDistance(const ShapeProxy& a, const Transform& xfA, const Sh
     }
     if (s.count == 2) s.solve2();
     if (s.count == 3) s.solve3();
+    solved = true;
     if (s.count == 3) break;  // origin inside: the cores overlap
 
     Vec2 d = s.searchDirection();
@@ -229,6 +231,11 @@ DistanceOutput shapeDistance(const ShapeProxy& a, const Transform& xfA, const Sh
     }
     if (duplicate) break;  // no progress: converged
     s.v[s.count++] = makeVertex(ia, ib);
+    solved = false;
+  }
+  if (!solved) {  // out of iterations with a vertex just added: weigh it in
+    if (s.count == 2) s.solve2();
+    if (s.count == 3) s.solve3();
   }
 
   DistanceOutput out;
@@ -243,10 +250,28 @@ DistanceOutput shapeDistance(const ShapeProxy& a, const Transform& xfA, const Sh
   }
   Vec2 pA, pB;
   s.witnessPoints(&pA, &pB);
-  Vec2 delta = pB - pA;
-  float coreDistance = length(delta);
+  // Normal and core distance. On an edge of the Minkowski difference the normal is the edge's
+  // perpendicular: the weighted sum pB - pA cancels to a vector of the distance's size, so when
+  // the cores are close (a face resting on a face) its direction is off by ulp(coordinates) /
+  // distance, while the perpendicular of the edge is good to an ulp at any distance.
+  float coreDistance;
+  Vec2 n{};
+  if (s.count == 2) {
+    Vec2 perp = leftPerp(s.v[1].w - s.v[0].w);
+    float side = dot(perp, s.v[0].w);
+    if (side < 0.0f) perp = -perp;
+    n = normalize(perp);
+    coreDistance = side == 0.0f ? 0.0f : dot(n, s.v[0].w);
+    if (coreDistance <= 0.0f) {
+      coreDistance = 0.0f;
+      n = Vec2{};
+    }
+  } else {
+    Vec2 delta = pB - pA;
+    coreDistance = length(delta);
+    if (coreDistance > 0.0f) n = (1.0f / coreDistance) * delta;
+  }
   float radii = a.radius + b.radius;
-  Vec2 n = coreDistance > 0.0f ? (1.0f / coreDistance) * delta : Vec2{};
   if (coreDistance > radii) {
     pA = mulAdd(pA, a.radius, n);
     pB = mulSub(pB, b.radius, n);

@@ -46,12 +46,16 @@ CastOutput sweptCircles(Vec2 centerA, float radiusA, Vec2 moveA, Vec2 centerB, f
 
 CastOutput shapeCast(const ShapeProxy& a, const Transform& xfA, Vec2 translation,
                      const ShapeProxy& b, const Transform& xfB, float target) {
-  // Conservative advancement (Mirtich 1996) with linear motion: the gap closes at most at
-  // dot(translation, -n) per unit t, so stepping by gap / that speed never passes contact.
-  // For polygons the closest features settle in a few steps; rounded shapes converge
-  // geometrically. The tolerance is the oracle's (Box2D: 0.25 * b2_linearSlop).
+  // Conservative advancement (Mirtich 1996) with linear motion. With n the unit normal of the
+  // closest features (A -> B), the separation along n is a lower bound of the distance and falls
+  // at exactly dot(translation, n) per unit t, so stepping by gap / that speed never passes
+  // contact. Each step aims at the target itself, except that the cores are kept half a tolerance
+  // apart: sharp shapes cast with target 0 would otherwise stop with their cores exactly
+  // touching, where GJK has no normal to give. The tolerance is the oracle's (Box2D: 0.25 *
+  // b2_linearSlop).
   constexpr float kTolerance = 0.25f * kLinearSlop;
   constexpr int kMaxIterations = 40;
+  const float aim = std::max(0.0f, 0.5f * kTolerance - (target + a.radius + b.radius));
   CastOutput out;
   SimplexCache cache;
   float t = 0.0f;
@@ -61,27 +65,24 @@ CastOutput shapeCast(const ShapeProxy& a, const Transform& xfA, Vec2 translation
     out.iterations = iter + 1;
     float gap = dist.distance - target;
     if (gap < kTolerance) {
-      if (iter == 0 && dist.distance <= target) {
-        // Starts in contact: hit at 0, normal from the cores if they are apart.
-        out.hit = true;
-        out.fraction = 0.0f;
-        out.normal = lengthSquared(dist.normal) > 0.0f ? -dist.normal : -normalize(translation);
-        out.point = dist.pointB;
-        return out;
-      }
       out.hit = true;
       out.fraction = t;
-      out.normal = -dist.normal;  // B's surface normal, towards A
       out.point = dist.pointB;
+      // B's surface normal, towards A. Only a cast that starts in contact can have touching
+      // cores (no normal): any direction out of B will do there, the reverse of the motion is
+      // the natural one.
+      Vec2 back = -normalize(translation);
+      out.normal = lengthSquared(dist.normal) > 0.0f ? -dist.normal
+                   : lengthSquared(back) > 0.0f      ? back
+                                                     : Vec2{0.0f, 1.0f};
       return out;
     }
-    float approach = -dot(translation, dist.normal);  // dist.normal points A -> B
-    approach = -approach;
+    float approach = dot(translation, dist.normal);
     if (approach <= 0.0f) return out;  // moving away or sliding past
-    t += gap / approach;
+    t += (gap - aim) / approach;
     if (t > 1.0f) return out;
   }
-  return out;  // did not converge: report no hit only if the last gap was open
+  return out;  // out of iterations: only reached while the gap is still open, so no hit
 }
 
 Transform sweepTransform(const Sweep& s, float t) {
@@ -94,12 +95,15 @@ ToiOutput timeOfImpact(const ShapeProxy& a, const Sweep& sweepA, const ShapeProx
                        const Sweep& sweepB, float tMax, float target) {
   // Conservative advancement with rotation: any point of a body moves at most
   // |dc| + |da| * R per unit t, R the farthest core point from the centre of mass. Work on the
-  // cores (radii folded into the target) so the bound holds for rounded shapes too.
+  // cores (radii folded into the target) so the bound holds for rounded shapes too. Steps aim at
+  // the target, or half a tolerance above the cores touching when the target is closer than
+  // that (see shapeCast).
   constexpr float kTolerance = 0.25f * kLinearSlop;
   constexpr int kMaxIterations = 64;
   ShapeProxy coreA = a, coreB = b;
   coreA.radius = coreB.radius = 0.0f;
   float coreTarget = target + a.radius + b.radius;
+  const float aim = std::max(0.0f, 0.5f * kTolerance - coreTarget);
   auto farthest = [](const ShapeProxy& p, Vec2 center) {
     float r = 0.0f;
     for (int i = 0; i < p.count; ++i)
@@ -139,7 +143,7 @@ ToiOutput timeOfImpact(const ShapeProxy& a, const Sweep& sweepA, const ShapeProx
       out.fraction = tMax;
       return out;
     }
-    t += gap / bound;
+    t += (gap - aim) / bound;
     if (t >= tMax) {
       out.state = ToiState::separated;
       out.fraction = tMax;

@@ -24,7 +24,10 @@ CastOutput sweptCircles(Vec2 centerA, float radiusA, Vec2 moveA, Vec2 centerB, f
 
 // Shape A moved by translation (world frame) against fixed shape B. Stops when the surfaces are
 // within `target` of each other (default: touching within the 0.25 * slop tolerance).
-// The normal points from B towards A at the hit (the surface normal of B the mover hits).
+// The normal points from B towards A at the hit (the surface normal of B the mover hits). The
+// hit is reported up to 0.25 * slop before touching (never after), so the cores are apart and
+// the normal is that of the closest features. A cast that starts in contact hits at fraction 0;
+// if the cores already overlap there, the normal is the reverse of the motion.
 CastOutput shapeCast(const ShapeProxy& a, const Transform& xfA, Vec2 translation,
                      const ShapeProxy& b, const Transform& xfB, float target = 0.0f);
 

@@ -39,17 +39,6 @@ struct PairCase {
   b2Sweep wa, wb;
 };
 
-b2Sweep toB2(const rc::Sweep& s) {
-  b2Sweep w;
-  w.localCenter.Set(s.localCenter.x, s.localCenter.y);
-  w.c0.Set(s.c1.x, s.c1.y);
-  w.c.Set(s.c2.x, s.c2.y);
-  w.a0 = s.a1;
-  w.a = s.a2;
-  w.alpha0 = 0.0f;
-  return w;
-}
-
 // Cases are heap-allocated once and never moved: the Box2D proxies point into them.
 std::vector<std::unique_ptr<PairCase>> makeCases(Kind ka, Kind kb, uint64_t seed) {
   rc::Random rng(seed);
@@ -71,8 +60,8 @@ std::vector<std::unique_ptr<PairCase>> makeCases(Kind ka, Kind kb, uint64_t seed
     // A sweep that closes a 3 m gap with up to a radian of spin: most cases hit.
     c->sa = {{}, {-3, 0}, {0.5f, 0}, 0.0f, rng.uniform(-1, 1)};
     c->sb = {{}, {3, rng.uniform(-0.5f, 0.5f)}, {0, 0}, 0.0f, rng.uniform(-1, 1)};
-    c->wa = toB2(c->sa);
-    c->wb = toB2(c->sb);
+    c->wa = rc::testing::toB2(c->sa);
+    c->wb = rc::testing::toB2(c->sb);
     cases.push_back(std::move(c));
   }
   return cases;

@@ -39,6 +39,7 @@
 #include "physics/distance.h"
 #include "physics/random.h"
 #include "physics/shapes.h"
+#include "support/box2d_adapter.h"
 
 namespace {
 
@@ -139,24 +140,6 @@ rc::Shape randomShape(rc::Random& rng, int kind) {
   }
 }
 
-// Fills a Box2D proxy in place (m_vertices may point into its own m_buffer) from ours.
-void fillProxy(b2DistanceProxy* proxy, const rc::ShapeProxy& s, b2Vec2* storage) {
-  b2Vec2* dst = s.count <= 2 ? proxy->m_buffer : storage;
-  for (int i = 0; i < s.count; ++i)
-    dst[i].Set(s.points[i].x, s.points[i].y);
-  proxy->m_vertices = dst;
-  proxy->m_count = s.count;
-  proxy->m_radius = s.radius;
-}
-
-b2Transform toB2(const rc::Transform& xf) {
-  b2Transform t;
-  t.p.Set(xf.p.x, xf.p.y);
-  t.q.s = xf.q.s;  // the same rotation bits on both sides
-  t.q.c = xf.q.c;
-  return t;
-}
-
 struct PairKinds {
   int a;
   int b;
@@ -206,11 +189,13 @@ TEST_P(ShapePairs, AgreeWithBox2D) {
     }
 
     b2DistanceInput input;
-    b2Vec2 storageA[rc::kMaxPolygonVertices], storageB[rc::kMaxPolygonVertices];
-    fillProxy(&input.proxyA, pa, storageA);
-    fillProxy(&input.proxyB, pb, storageB);
-    input.transformA = toB2(xfA);
-    input.transformB = toB2(xfB);
+    rc::testing::Box2DProxy qa, qb;  // input.proxyA/B point into these
+    qa.set(pa);
+    qb.set(pb);
+    input.proxyA = qa.proxy;
+    input.proxyB = qb.proxy;
+    input.transformA = rc::testing::toB2(xfA);
+    input.transformB = rc::testing::toB2(xfB);
     input.useRadii = true;
     b2SimplexCache cache;
     cache.count = 0;

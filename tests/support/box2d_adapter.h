@@ -10,13 +10,14 @@
 
 #include "physics/distance.h"
 #include "physics/shapes.h"
+#include "physics/toi.h"
 
 namespace rc::testing {
 
 inline b2Transform toB2(const Transform& xf) {
   b2Transform t;
   t.p.Set(xf.p.x, xf.p.y);
-  t.q.c = xf.q.c;
+  t.q.c = xf.q.c;  // the same rotation bits on both sides
   t.q.s = xf.q.s;
   return t;
 }
@@ -89,5 +90,18 @@ struct Box2DProxy {
     proxy.m_radius = p.radius;
   }
 };
+
+// The same motion: both engines interpolate centre and angle linearly in t (Box2D builds the
+// rotation with the C library's sinf/cosf, ours with rc::sincos; they differ by ~1e-7).
+inline b2Sweep toB2(const Sweep& s) {
+  b2Sweep w;
+  w.localCenter.Set(s.localCenter.x, s.localCenter.y);
+  w.c0.Set(s.c1.x, s.c1.y);
+  w.c.Set(s.c2.x, s.c2.y);
+  w.a0 = s.a1;
+  w.a = s.a2;
+  w.alpha0 = 0.0f;
+  return w;
+}
 
 }  // namespace rc::testing

@@ -147,7 +147,7 @@ bool overlapPolygonCircle(const Shape& a, const Transform& xa, const Shape& b,
     }
   }
   if (maxSep <= 0.0f) return true;
-  Vec2 v1 = p.vertices[best], v2 = p.vertices[(best + 1) % p.count];
+  Vec2 v1 = p.vertices[best], v2 = p.vertices[nextIndex(best, p.count)];
   Vec2 e = v2 - v1;
   float u = dot(c - v1, e);
   if (u <= 0.0f) return distanceSquared(c, v1) <= r * r;

@@ -212,4 +212,10 @@ constexpr AABB inflate(const AABB& a, float margin) {
   return {{a.lower.x - margin, a.lower.y - margin}, {a.upper.x + margin, a.upper.y + margin}};
 }
 
+// The index after i in a cycle of n (a compare, not an integer division: % costs ~25 cycles of
+// latency in the hot loops over polygon edges).
+constexpr int nextIndex(int i, int n) {
+  return i + 1 < n ? i + 1 : 0;
+}
+
 }  // namespace rc

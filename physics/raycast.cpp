@@ -126,7 +126,7 @@ CastOutput rayCast(const Polygon& s, const RayCastInput& in) {
     Vec2 dir = (1.0f / length) * in.translation;
     CastOutput best;
     for (int i = 0; i < s.count; ++i)
-      keepCloser(best, castCapsuleOutside(s.vertices[i], s.vertices[(i + 1) % s.count], s.radius,
+      keepCloser(best, castCapsuleOutside(s.vertices[i], s.vertices[nextIndex(i, s.count)], s.radius,
                                           in, length, dir));
     return best;
   }

@@ -126,8 +126,8 @@ CastOutput rayCast(const Polygon& s, const RayCastInput& in) {
     Vec2 dir = (1.0f / length) * in.translation;
     CastOutput best;
     for (int i = 0; i < s.count; ++i)
-      keepCloser(best, castCapsuleOutside(s.vertices[i], s.vertices[nextIndex(i, s.count)], s.radius,
-                                          in, length, dir));
+      keepCloser(best, castCapsuleOutside(s.vertices[i], s.vertices[nextIndex(i, s.count)],
+                                          s.radius, in, length, dir));
     return best;
   }
   // Cyrus-Beck clipping of the ray against every edge's half-plane.

@@ -32,6 +32,13 @@ ProxyId allocate(std::vector<ProxyData>& proxies, std::vector<ProxyId>& freeList
   return id;
 }
 
+std::size_t checkedIndex(const std::vector<ProxyData>& proxies, ProxyId id, const char* owner) {
+  if (id < 0 || static_cast<std::size_t>(id) >= proxies.size() ||
+      !proxies[static_cast<std::size_t>(id)].alive)
+    throw InvalidProxy(std::string(owner) + ": no proxy " + std::to_string(id));
+  return static_cast<std::size_t>(id);
+}
+
 }  // namespace
 
 // ------------------------------------------------------------------------------------ Quadtree
@@ -56,10 +63,7 @@ Quadtree::Quadtree(const AABB& worldBounds, int maxDepth) {
 }
 
 std::size_t Quadtree::checked(ProxyId id) const {
-  if (id < 0 || static_cast<std::size_t>(id) >= proxies_.size() ||
-      !proxies_[static_cast<std::size_t>(id)].alive)
-    throw InvalidProxy("Quadtree: no proxy " + std::to_string(id));
-  return static_cast<std::size_t>(id);
+  return checkedIndex(proxies_, id, "Quadtree");
 }
 
 ProxyId& Quadtree::headOf(Tree& tree, int level, int cell) {
@@ -237,10 +241,7 @@ void Quadtree::validate() const {
 // ---------------------------------------------------------------------------------- BruteForce
 
 std::size_t BruteForce::checked(ProxyId id) const {
-  if (id < 0 || static_cast<std::size_t>(id) >= proxies_.size() ||
-      !proxies_[static_cast<std::size_t>(id)].alive)
-    throw InvalidProxy("BruteForce: no proxy " + std::to_string(id));
-  return static_cast<std::size_t>(id);
+  return checkedIndex(proxies_, id, "BruteForce");
 }
 
 ProxyId BruteForce::createProxy(const ProxyDef& def) {

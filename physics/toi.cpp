@@ -71,10 +71,12 @@ CastOutput shapeCast(const ShapeProxy& a, const Transform& xfA, Vec2 translation
       // B's surface normal, towards A. Only a cast that starts in contact can have touching
       // cores (no normal): any direction out of B will do there, the reverse of the motion is
       // the natural one.
-      Vec2 back = -normalize(translation);
-      out.normal = lengthSquared(dist.normal) > 0.0f ? -dist.normal
-                   : lengthSquared(back) > 0.0f      ? back
-                                                     : Vec2{0.0f, 1.0f};
+      if (lengthSquared(dist.normal) > 0.0f) {
+        out.normal = -dist.normal;
+      } else {
+        out.normal = -normalize(translation);
+        if (lengthSquared(out.normal) == 0.0f) out.normal = {0.0f, 1.0f};
+      }
       return out;
     }
     float approach = dot(translation, dist.normal);

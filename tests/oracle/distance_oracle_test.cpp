@@ -40,10 +40,17 @@
 #include "physics/random.h"
 #include "physics/shapes.h"
 #include "support/box2d_adapter.h"
+#include "support/reference_geometry.h"
 
 namespace {
 
 using rc::Vec2;
+using rc::testing::Core;
+using rc::testing::dist;
+using rc::testing::P2;
+using rc::testing::pointSegmentDistance;
+using rc::testing::signedSurfaceDistance;
+using rc::testing::toP2;
 
 enum Kind { kCircle, kBox, kPolygon, kCapsule, kSegment, kKindCount };
 const char* const kKindNames[kKindCount] = {"circle", "box", "polygon", "capsule", "segment"};
@@ -55,56 +62,13 @@ constexpr double kPointCompareAbove = 1e-3;
 
 // ---- Independent point-to-shape distance in double ----
 
-struct P2 {
-  double x = 0.0;
-  double y = 0.0;
-};
-P2 toP2(Vec2 v) {
-  return {v.x, v.y};
-}
 P2 toP2(b2Vec2 v) {
   return {v.x, v.y};
 }
-double dist(P2 a, P2 b) {
-  return std::hypot(b.x - a.x, b.y - a.y);
-}
-double pointSegmentDistance(P2 p, P2 a, P2 b) {
-  double ex = b.x - a.x, ey = b.y - a.y;
-  double ee = ex * ex + ey * ey;
-  double t = ee > 0.0 ? std::clamp(((p.x - a.x) * ex + (p.y - a.y) * ey) / ee, 0.0, 1.0) : 0.0;
-  return std::hypot(p.x - (a.x + t * ex), p.y - (a.y + t * ey));
-}
 
-// A shape's core in world coordinates (counter-clockwise when 3 or more points) and its radius.
-struct Core {
-  P2 pts[rc::kMaxPolygonVertices];
-  int count = 0;
-  double radius = 0.0;
-};
-
+// The core as Box2D sees it: our proxy's points, transformed in double.
 Core worldCore(const rc::ShapeProxy& s, const rc::Transform& xf) {
-  Core c;
-  c.count = s.count;
-  c.radius = s.radius;
-  double qc = xf.q.c, qs = xf.q.s;
-  for (int i = 0; i < s.count; ++i) {
-    double x = s.points[i].x, y = s.points[i].y;
-    c.pts[i] = {qc * x - qs * y + xf.p.x, qs * x + qc * y + xf.p.y};
-  }
-  return c;
-}
-
-// Signed distance from p to the rounded shape's surface (negative inside).
-double signedSurfaceDistance(const Core& c, P2 p) {
-  int edges = c.count >= 3 ? c.count : 1;
-  double edge = std::numeric_limits<double>::infinity();
-  bool inside = c.count >= 3;
-  for (int i = 0; i < edges; ++i) {
-    P2 a = c.pts[i], b = c.count >= 3 ? c.pts[(i + 1) % c.count] : c.pts[c.count - 1];
-    edge = std::min(edge, pointSegmentDistance(p, a, b));
-    if ((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x) < 0.0) inside = false;
-  }
-  return (inside ? -edge : edge) - c.radius;
+  return rc::testing::worldCore(s.points, s.count, s.radius, xf);
 }
 
 // ---- Random shapes ----

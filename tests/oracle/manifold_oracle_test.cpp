@@ -23,11 +23,13 @@
 #include "physics/distance.h"
 #include "support/box2d_adapter.h"
 #include "support/random_shapes.h"
+#include "support/reference_geometry.h"
 
 namespace {
 
 using rc::Vec2;
 using rc::testing::Kind;
+using rc::testing::support;
 
 using rc::testing::Box2DShape;
 using rc::testing::toB2;
@@ -58,13 +60,6 @@ b2Manifold oracleCollide(const Box2DShape& a, const b2Transform& xa, const Box2D
   return m;
 }
 
-float support(const rc::Shape& s, const rc::Transform& xf, Vec2 n) {
-  rc::ShapeProxy p = rc::makeProxy(s);
-  float best = -1e30f;
-  for (int i = 0; i < p.count; ++i)
-    best = std::max(best, rc::dot(rc::apply(xf, p.points[i]), n));
-  return best + p.radius;
-}
 float gapAlong(const rc::Shape& a, const rc::Transform& xa, const rc::Shape& b,
                const rc::Transform& xb, Vec2 n) {
   return -support(b, xb, -n) - support(a, xa, n);

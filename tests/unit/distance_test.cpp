@@ -16,40 +16,28 @@
 #include "physics/distance.h"
 #include "physics/random.h"
 #include "physics/shapes.h"
+#include "support/reference_geometry.h"
 
 namespace {
 
 using rc::Vec2;
+using rc::testing::Core;
+using rc::testing::coreContains;
+using rc::testing::dist;
+using rc::testing::edgeCount;
+using rc::testing::edgeEnd;
+using rc::testing::edgeStart;
+using rc::testing::orient;
+using rc::testing::P2;
+using rc::testing::pointSegmentDistance;
+using rc::testing::signedSurfaceDistance;
+using rc::testing::toP2;
 constexpr double kFloatUnitRoundoff = 1.0 / 16777216.0;  // 2^-24: float rounding, relative
 
 // ---------------------------------------------------------------------------------------------
 // Reference geometry in double, independent of physics/ (only rc::Vec2 and the shape structs are
 // read).
 
-struct P2 {
-  double x = 0.0;
-  double y = 0.0;
-};
-P2 toP2(Vec2 v) {
-  return {v.x, v.y};
-}
-double dist(P2 a, P2 b) {
-  return std::hypot(b.x - a.x, b.y - a.y);
-}
-
-double pointSegmentDistance(P2 p, P2 a, P2 b) {
-  double ex = b.x - a.x, ey = b.y - a.y;
-  double ee = ex * ex + ey * ey;
-  double t = ee > 0.0 ? std::clamp(((p.x - a.x) * ex + (p.y - a.y) * ey) / ee, 0.0, 1.0) : 0.0;
-  return std::hypot(p.x - (a.x + t * ex), p.y - (a.y + t * ey));
-}
-
-// Sign of the orientation of (a, b, c) in long double (exact or nearly so for float inputs).
-int orient(P2 a, P2 b, P2 c) {
-  long double v = (static_cast<long double>(b.x) - a.x) * (static_cast<long double>(c.y) - a.y) -
-                  (static_cast<long double>(b.y) - a.y) * (static_cast<long double>(c.x) - a.x);
-  return (v > 0) - (v < 0);
-}
 bool inBoundingBox(P2 a, P2 b, P2 p) {
   return std::min(a.x, b.x) <= p.x && p.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= p.y &&
          p.y <= std::max(a.y, b.y);
@@ -67,22 +55,17 @@ bool segmentsIntersectRef(P2 a, P2 b, P2 c, P2 d) {
   return false;
 }
 
-// The core of a shape (1 to 8 points, counter-clockwise when 3 or more) in world coordinates, in
-// double, and its radius. Built from the shape fields directly, not through rc::makeProxy.
-struct Core {
-  P2 pts[rc::kMaxPolygonVertices];
+// The core of a shape in world coordinates, built from the shape fields directly, not through
+// rc::makeProxy.
+Core worldCore(const rc::Shape& s, const rc::Transform& xf) {
+  Vec2 local[rc::kMaxPolygonVertices];
   int count = 0;
   double radius = 0.0;
-};
-
-Core worldCore(const rc::Shape& s, const rc::Transform& xf) {
-  Core c;
-  Vec2 local[rc::kMaxPolygonVertices];
   switch (s.type) {
     case rc::ShapeType::circle:
       local[0] = s.circle.center;
-      c.count = 1;
-      c.radius = s.circle.radius;
+      count = 1;
+      radius = s.circle.radius;
       break;
     case rc::ShapeType::box: {
       Vec2 m = s.box.center, h = s.box.halfExtents;
@@ -90,56 +73,33 @@ Core worldCore(const rc::Shape& s, const rc::Transform& xf) {
       local[1] = {m.x + h.x, m.y - h.y};
       local[2] = {m.x + h.x, m.y + h.y};
       local[3] = {m.x - h.x, m.y + h.y};
-      c.count = 4;
+      count = 4;
       break;
     }
     case rc::ShapeType::polygon:
       for (int i = 0; i < s.polygon.count; ++i)
         local[i] = s.polygon.vertices[i];
-      c.count = s.polygon.count;
-      c.radius = s.polygon.radius;
+      count = s.polygon.count;
+      radius = s.polygon.radius;
       break;
     case rc::ShapeType::capsule:
       local[0] = s.capsule.center1;
       local[1] = s.capsule.center2;
-      c.count = 2;
-      c.radius = s.capsule.radius;
+      count = 2;
+      radius = s.capsule.radius;
       break;
     case rc::ShapeType::segment:
       local[0] = s.segment.point1;
       local[1] = s.segment.point2;
-      c.count = 2;
+      count = 2;
       break;
     case rc::ShapeType::chainSegment:
       local[0] = s.chainSegment.segment.point1;
       local[1] = s.chainSegment.segment.point2;
-      c.count = 2;
+      count = 2;
       break;
   }
-  double qc = xf.q.c, qs = xf.q.s;
-  for (int i = 0; i < c.count; ++i) {
-    double x = local[i].x, y = local[i].y;
-    c.pts[i] = {qc * x - qs * y + xf.p.x, qs * x + qc * y + xf.p.y};
-  }
-  return c;
-}
-
-int edgeCount(const Core& c) {
-  return c.count >= 3 ? c.count : 1;
-}
-P2 edgeStart(const Core& c, int i) {
-  return c.pts[i];
-}
-P2 edgeEnd(const Core& c, int i) {
-  return c.count >= 3 ? c.pts[(i + 1) % c.count] : c.pts[c.count - 1];
-}
-
-bool coreContains(const Core& c, P2 p) {
-  if (c.count < 3) return false;
-  for (int i = 0; i < c.count; ++i) {
-    if (orient(edgeStart(c, i), edgeEnd(c, i), p) < 0) return false;
-  }
-  return true;
+  return rc::testing::worldCore(local, count, radius, xf);
 }
 
 // Distance from p to the core; 0 inside.
@@ -149,14 +109,6 @@ double pointCoreDistance(const Core& c, P2 p) {
   for (int i = 0; i < edgeCount(c); ++i)
     best = std::min(best, pointSegmentDistance(p, edgeStart(c, i), edgeEnd(c, i)));
   return best;
-}
-
-// Signed distance from p to the rounded shape's surface: negative inside.
-double signedSurfaceDistance(const Core& c, P2 p) {
-  double edge = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < edgeCount(c); ++i)
-    edge = std::min(edge, pointSegmentDistance(p, edgeStart(c, i), edgeEnd(c, i)));
-  return (coreContains(c, p) ? -edge : edge) - c.radius;
 }
 
 // Distance between two rounded convex shapes: the cores are at distance 0 when a vertex of one is

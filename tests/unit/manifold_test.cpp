@@ -8,11 +8,13 @@
 #include "physics/collide.h"
 #include "physics/distance.h"
 #include "support/random_shapes.h"
+#include "support/reference_geometry.h"
 
 namespace {
 
 using rc::Vec2;
 using rc::testing::Kind;
+using rc::testing::support;
 
 float deepest(const rc::Manifold& m) {
   float s = 1e30f;
@@ -156,14 +158,6 @@ TEST(Manifold, MirroredPairsAgree) {
   }
 }
 
-// Support of a placed shape along direction n: max over its core points of p.n, plus radius.
-float support(const rc::Shape& s, const rc::Transform& xf, Vec2 n) {
-  rc::ShapeProxy p = rc::makeProxy(s);
-  float best = -1e30f;
-  for (int i = 0; i < p.count; ++i)
-    best = std::max(best, rc::dot(rc::apply(xf, p.points[i]), n));
-  return best + p.radius;
-}
 // Gap between the shapes' projections on n (A below, B above); its maximum over all directions
 // is the distance when apart and minus the penetration depth when overlapping.
 double gap(const rc::Shape& a, const rc::Transform& xa, const rc::Shape& b, const rc::Transform& xb,

@@ -20,6 +20,7 @@
 
 #include "physics/random.h"
 #include "physics/raycast.h"
+#include "support/random_shapes.h"
 
 namespace {
 
@@ -573,26 +574,11 @@ TEST(RayCastGrazing, PolygonVertices) {
 // ---------------------------------------------------------------------------------------------
 // Brute force: march along the ray with containsPoint.
 
-enum class Kind { circle, box, polygon, roundedPolygon, orientedBox, capsule };
+using rc::testing::Kind;
+using rc::testing::kindName;
+// The solid kinds (rc::testing::Kind without segments), sized here by randomSolid.
 constexpr Kind kKinds[] = {Kind::circle,         Kind::box,         Kind::polygon,
                            Kind::roundedPolygon, Kind::orientedBox, Kind::capsule};
-const char* kindName(Kind k) {
-  switch (k) {
-    case Kind::circle:
-      return "circle";
-    case Kind::box:
-      return "box";
-    case Kind::polygon:
-      return "polygon";
-    case Kind::roundedPolygon:
-      return "rounded polygon";
-    case Kind::orientedBox:
-      return "oriented box";
-    case Kind::capsule:
-      return "capsule";
-  }
-  return "?";
-}
 
 Shape randomSolid(rc::Random& rng, Kind kind) {
   switch (kind) {
@@ -625,6 +611,8 @@ Shape randomSolid(rc::Random& rng, Kind kind) {
       if (rc::distanceSquared(a, b) < 1e-4f) b = a + Vec2{0.3f, 0.1f};
       return rc::makeCapsule(a, b, rng.uniform(0.02f, 0.6f));
     }
+    case Kind::segment:  // not a solid: not in kKinds
+      break;
   }
   return rc::makeCircle({}, 1.0f);
 }

@@ -11,44 +11,109 @@ void checkAABB(const AABB& box, const char* where) {
     throw InvalidProxy(std::string(where) + ": AABB is not finite or has lower > upper");
 }
 
-ProxyId allocate(std::vector<ProxyData>& proxies, std::vector<ProxyId>& freeList,
-                 const ProxyDef& def) {
+// The fat AABB for a tight one: the margin on every side, stretched along the displacement.
+AABB fatten(const AABB& aabb, Vec2 displacement) {
+  AABB fat = inflate(aabb, kAabbMargin);
+  const Vec2 d = kDisplacementMultiplier * displacement;
+  (d.x < 0.0f ? fat.lower.x : fat.upper.x) += d.x;
+  (d.y < 0.0f ? fat.lower.y : fat.upper.y) += d.y;
+  return fat;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------- ProxyStore
+
+std::size_t ProxyStore::checked(ProxyId id) const {
+  if (id < 0 || static_cast<std::size_t>(id) >= proxies_.size() ||
+      !proxies_[static_cast<std::size_t>(id)].alive)
+    throw InvalidProxy(std::string(name_) + ": no proxy " + std::to_string(id));
+  return static_cast<std::size_t>(id);
+}
+
+ProxyId ProxyStore::allocate(const ProxyDef& def) {
+  checkAABB(def.aabb, name_);
   ProxyId id;
-  if (!freeList.empty()) {
+  if (!free_.empty()) {
     // Last freed, first reused: ids depend only on the sequence of calls.
-    id = freeList.back();
-    freeList.pop_back();
+    id = free_.back();
+    free_.pop_back();
   } else {
-    id = static_cast<ProxyId>(proxies.size());
-    proxies.emplace_back();
+    id = static_cast<ProxyId>(proxies_.size());
+    proxies_.emplace_back();
   }
-  ProxyData& p = proxies[static_cast<std::size_t>(id)];
+  ProxyData& p = proxies_[static_cast<std::size_t>(id)];
   p = ProxyData{};
   p.fat = inflate(def.aabb, kAabbMargin);
   p.filter = def.filter;
   p.userData = def.userData;
   p.isStatic = def.isStatic;
   p.alive = true;
+  // A new proxy, static ones included, must find its pairs in the next updatePairs.
+  p.moved = true;
+  moveBuffer_.push_back(id);
+  ++count_;
   return id;
 }
 
-std::size_t checkedIndex(const std::vector<ProxyData>& proxies, ProxyId id, const char* owner) {
-  if (id < 0 || static_cast<std::size_t>(id) >= proxies.size() ||
-      !proxies[static_cast<std::size_t>(id)].alive)
-    throw InvalidProxy(std::string(owner) + ": no proxy " + std::to_string(id));
-  return static_cast<std::size_t>(id);
+void ProxyStore::release(ProxyId id) {
+  ProxyData& p = proxies_[checked(id)];
+  p.alive = false;
+  p.moved = false;  // its stale buffer entry is skipped
+  free_.push_back(id);
+  --count_;
 }
 
-}  // namespace
+bool ProxyStore::refit(ProxyId id, const AABB& aabb, Vec2 displacement) {
+  ProxyData& p = proxies_[checked(id)];
+  checkAABB(aabb, name_);
+  if (!isFinite(displacement))
+    throw InvalidProxy(std::string(name_) + ": displacement is not finite");
+  const AABB fat = fatten(aabb, displacement);
+  if (p.fat.contains(aabb)) {
+    // Still inside; but a fat AABB left stretched by a fast mover that slowed down would pair
+    // with everything around it, so it is refitted once it is far larger than a new one (a
+    // steady mover's boxes keep their size and are not).
+    const Vec2 grown = (p.fat.upper - p.fat.lower) - (fat.upper - fat.lower);
+    if (std::max(grown.x, grown.y) <= 4.0f * kAabbMargin) return false;
+  }
+  p.fat = fat;
+  if (!p.moved) {
+    p.moved = true;
+    moveBuffer_.push_back(id);
+  }
+  return true;
+}
+
+void ProxyStore::bruteFindPairs(std::vector<ProxyPair>& pairs) const {
+  pairs.clear();
+  for (std::size_t i = 0; i < proxies_.size(); ++i) {
+    const ProxyData& a = proxies_[i];
+    if (!a.alive) continue;
+    for (std::size_t j = i + 1; j < proxies_.size(); ++j) {
+      const ProxyData& b = proxies_[j];
+      if (!b.alive || (a.isStatic && b.isStatic)) continue;
+      if (shouldCollide(a.filter, b.filter) && overlaps(a.fat, b.fat))
+        pairs.push_back({static_cast<ProxyId>(i), static_cast<ProxyId>(j)});
+    }
+  }
+}
 
 // ------------------------------------------------------------------------------------ Quadtree
 
-Quadtree::Quadtree(const AABB& worldBounds, int maxDepth) {
+Quadtree::Quadtree(const AABB& worldBounds, int maxDepth) : ProxyStore("Quadtree") {
   checkAABB(worldBounds, "Quadtree world bounds");
-  maxDepth_ = std::clamp(maxDepth, 0, 12);
   Vec2 e = worldBounds.extents();
   size_ = 2.0f * std::max(e.x, e.y);
   if (!(size_ > 0.0f)) throw InvalidProxy("Quadtree world bounds: zero size");
+  if (maxDepth == kAutoDepth) {
+    // The finest cells at least kFinestCell across: a character-sized mover sits on the finest
+    // level, and a huge world does not allocate millions of cells nothing fits.
+    maxDepth = 0;
+    while (maxDepth < kMaxDepth && size_ / static_cast<float>(2 << maxDepth) >= kFinestCell)
+      ++maxDepth;
+  }
+  maxDepth_ = std::clamp(maxDepth, 0, kMaxDepth);
   Vec2 c = worldBounds.center();
   origin_ = {c.x - 0.5f * size_, c.y - 0.5f * size_};
   for (Tree* tree : {&static_, &moving_}) {
@@ -60,10 +125,6 @@ Quadtree::Quadtree(const AABB& worldBounds, int maxDepth) {
       level.heads.assign(static_cast<std::size_t>(level.side) * level.side, kNullProxy);
     }
   }
-}
-
-std::size_t Quadtree::checked(ProxyId id) const {
-  return checkedIndex(proxies_, id, "Quadtree");
 }
 
 ProxyId& Quadtree::headOf(Tree& tree, int level, int cell) {
@@ -128,33 +189,29 @@ void Quadtree::place(ProxyId id) {
 }
 
 ProxyId Quadtree::createProxy(const ProxyDef& def) {
-  checkAABB(def.aabb, "Quadtree::createProxy");
-  ProxyId id = allocate(proxies_, free_, def);
+  ProxyId id = allocate(def);
   place(id);
-  ++count_;
   return id;
 }
 
 void Quadtree::destroyProxy(ProxyId id) {
-  std::size_t i = checked(id);
+  checked(id);
   unlink(id);
-  proxies_[i].alive = false;
-  free_.push_back(id);
-  --count_;
+  release(id);
 }
 
-bool Quadtree::moveProxy(ProxyId id, const AABB& aabb) {
-  std::size_t i = checked(id);
-  checkAABB(aabb, "Quadtree::moveProxy");
-  ProxyData& p = proxies_[i];
-  if (p.fat.contains(aabb)) return false;
-  unlink(id);
-  p.fat = inflate(aabb, kAabbMargin);
+bool Quadtree::moveProxy(ProxyId id, const AABB& aabb, Vec2 displacement) {
+  if (!refit(id, aabb, displacement)) return false;
+  unlink(id);  // from the cell it records, whatever its new fat AABB
   place(id);
   return true;
 }
 
 void Quadtree::findPairs(std::vector<ProxyPair>& pairs) const {
+  if (small()) {
+    bruteFindPairs(pairs);
+    return;
+  }
   pairs.clear();
   // Every moving proxy queries both trees; a moving-moving pair is kept from its lower id only.
   for (std::size_t i = 0; i < proxies_.size(); ++i) {
@@ -172,6 +229,19 @@ void Quadtree::findPairs(std::vector<ProxyPair>& pairs) const {
     queryTree(static_, m.fat, visit);
   }
   std::sort(pairs.begin(), pairs.end());
+}
+
+void Quadtree::updatePairs(std::vector<ProxyPair>& pairs) {
+  const bool brute = small();
+  pairsOfMoved(pairs, [&](ProxyId self, auto&& visit) {
+    const ProxyData& m = proxies_[static_cast<std::size_t>(self)];
+    if (brute) {
+      bruteAABB(m.fat, ProxyFilter{0xFFFFFFFFu, 0xFFFFFFFFu}, visit);
+      return;
+    }
+    queryTree(moving_, m.fat, visit);
+    if (!m.isStatic) queryTree(static_, m.fat, visit);
+  });
 }
 
 std::vector<ProxyId> Quadtree::queryAABB(const AABB& box, ProxyFilter filter) const {
@@ -236,54 +306,45 @@ void Quadtree::validate() const {
     }
   }
   if (seen != count_) fail("linked " + std::to_string(seen) + " of " + std::to_string(count_));
+  // Every proxy flagged as moved is in the move buffer.
+  std::vector<char> buffered(proxies_.size(), 0);
+  for (ProxyId id : moveBuffer_) {
+    if (id < 0 || static_cast<std::size_t>(id) >= proxies_.size())
+      fail("move buffer holds a bad id");
+    buffered[static_cast<std::size_t>(id)] = 1;
+  }
+  for (std::size_t i = 0; i < proxies_.size(); ++i)
+    if (proxies_[i].moved && (!proxies_[i].alive || !buffered[i]))
+      fail("proxy " + std::to_string(i) + " is flagged as moved but not buffered");
 }
 
 // ---------------------------------------------------------------------------------- BruteForce
 
-std::size_t BruteForce::checked(ProxyId id) const {
-  return checkedIndex(proxies_, id, "BruteForce");
-}
-
 ProxyId BruteForce::createProxy(const ProxyDef& def) {
-  checkAABB(def.aabb, "BruteForce::createProxy");
-  ++count_;
-  return allocate(proxies_, free_, def);
+  return allocate(def);
 }
 
 void BruteForce::destroyProxy(ProxyId id) {
-  proxies_[checked(id)].alive = false;
-  free_.push_back(id);
-  --count_;
+  release(id);
 }
 
-bool BruteForce::moveProxy(ProxyId id, const AABB& aabb) {
-  ProxyData& p = proxies_[checked(id)];
-  checkAABB(aabb, "BruteForce::moveProxy");
-  if (p.fat.contains(aabb)) return false;
-  p.fat = inflate(aabb, kAabbMargin);
-  return true;
+bool BruteForce::moveProxy(ProxyId id, const AABB& aabb, Vec2 displacement) {
+  return refit(id, aabb, displacement);
 }
 
-void BruteForce::findPairs(std::vector<ProxyPair>& pairs) const {
-  pairs.clear();
-  for (std::size_t i = 0; i < proxies_.size(); ++i) {
-    const ProxyData& a = proxies_[i];
-    if (!a.alive) continue;
-    for (std::size_t j = i + 1; j < proxies_.size(); ++j) {
-      const ProxyData& b = proxies_[j];
-      if (!b.alive || (a.isStatic && b.isStatic)) continue;
-      if (shouldCollide(a.filter, b.filter) && overlaps(a.fat, b.fat))
-        pairs.push_back({static_cast<ProxyId>(i), static_cast<ProxyId>(j)});
-    }
-  }
+void BruteForce::updatePairs(std::vector<ProxyPair>& pairs) {
+  pairsOfMoved(pairs, [&](ProxyId self, auto&& visit) {
+    bruteAABB(proxies_[static_cast<std::size_t>(self)].fat, ProxyFilter{0xFFFFFFFFu, 0xFFFFFFFFu},
+              visit);
+  });
 }
 
 std::vector<ProxyId> BruteForce::queryAABB(const AABB& box, ProxyFilter filter) const {
   std::vector<ProxyId> out;
-  for (std::size_t i = 0; i < proxies_.size(); ++i)
-    if (proxies_[i].alive && shouldCollide(filter, proxies_[i].filter) &&
-        overlaps(proxies_[i].fat, box))
-      out.push_back(static_cast<ProxyId>(i));
+  queryAABB(box, filter, [&](ProxyId id) {
+    out.push_back(id);
+    return true;
+  });
   return out;
 }
 

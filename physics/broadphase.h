@@ -1,44 +1,52 @@
 // Ricochet physics: the broadphase. Proxies are shape AABBs; the broadphase finds the pairs
-// whose AABBs overlap and answers AABB and point queries, so that exact geometry runs only on
-// candidates.
+// whose AABBs overlap and answers AABB, point, ray and swept-circle queries, so that exact
+// geometry runs only on candidates.
 //
 // Two implementations with one interface:
 //   Quadtree    a loose quadtree (Ulrich, "Loose Octrees", Game Programming Gems 2000) over a
 //               fixed square world. A proxy lives in exactly one cell: the deepest level whose
-//               cells are at least twice its size, the cell that holds its centre. A cell's
+//               cells are at least as large as it, the cell that holds its centre. A cell's
 //               loose bounds are the cell grown by half a cell on every side, so a proxy always
 //               lies inside the loose bounds of its cell: nothing straddles, nothing is indexed
 //               by its centre alone (the Doom blockmap bug), and insert, remove and move are
 //               O(1) with no rebalancing. Cells are a dense array per level with intrusive
 //               doubly linked lists of proxies, so moving a proxy never allocates.
-//   BruteForce  every proxy against every proxy: the reference for the tests, and the right
-//               choice for scenes of a few dozen proxies.
+//   BruteForce  every proxy against every proxy: the reference for the tests. The Quadtree
+//               itself answers by brute force while it holds few proxies (kBruteForceBelow,
+//               measured: see the README's Performance section).
 //
 // Why a loose quadtree: the scenes of a top-down shooter are a few hundred static walls and up
 // to tens of thousands of similar-sized movers. Those all land on one or two levels, where a
 // query visits a fixed 3x3 block of cells per level (loose bounds overlap the neighbours), so
 // cost per proxy does not grow with N; a region quadtree with straddler lists costs the same
-// per query but pays for splits and merges while things move.
+// per query but pays for splits and merges while things move, and a tree rebuilt every step
+// pays for all proxies when only a few left their fat AABBs.
 //
 // Static and moving proxies are kept apart: static proxies sit in their own tree and are never
 // visited by the per-step loops except as partners of movers; static-static pairs are never
-// reported. Every proxy's AABB is stored enlarged by a margin (fat AABB): moveProxy only
-// touches the tree when the new AABB leaves the fat one.
+// reported. Every proxy's AABB is stored enlarged (fat AABB): by a margin on every side and,
+// when the caller passes the step's displacement, stretched along the motion; moveProxy only
+// touches the tree when the new AABB leaves the fat one. Proxies that did are buffered, and
+// updatePairs reports the pairs that involve them: the new pairs a contact manager must add.
 //
 // Proxies whose centre lies outside the world square, or that are larger than it, go to an
 // "outside" list that every query scans: they are never lost, and the tree's depth stays
 // bounded (maxDepth) whatever the input. NaN or infinite bounds are rejected with
-// rc::InvalidProxy. Pairs come out sorted by (lower id, higher id): the order never depends
-// on memory addresses.
+// rc::InvalidProxy. Pairs come out sorted by (lower id, higher id) and query results by id or
+// by (fraction, id): no order depends on memory addresses.
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "physics/math.h"
+#include "physics/raycast.h"
 
 namespace rc {
 
@@ -68,8 +76,11 @@ class InvalidProxy : public std::invalid_argument {
 };
 
 // Margin added around every AABB: a mover at 5 m/s and 60 Hz stays inside its fat AABB for
-// about two steps.
+// about two steps (the same margin as Box2D's b2_aabbExtension).
 inline constexpr float kAabbMargin = 0.1f;
+// A fat AABB is stretched along the step's displacement times this, so that a steady mover
+// re-enters the tree every few steps rather than every other one.
+inline constexpr float kDisplacementMultiplier = 4.0f;
 
 struct ProxyDef {
   AABB aabb;
@@ -78,13 +89,14 @@ struct ProxyDef {
   std::uint64_t userData = 0;
 };
 
-// What both implementations share: proxy storage with a free list and generational reuse.
+// One proxy's storage, shared by both implementations.
 struct ProxyData {
   AABB fat;
   ProxyFilter filter;
   std::uint64_t userData = 0;
   bool isStatic = false;
   bool alive = false;
+  bool moved = false;  // created or re-inserted since the last updatePairs
   // Quadtree placement: level, cell, and links in the cell's list (-1: none). level -1 means
   // the outside list.
   std::int32_t level = 0;
@@ -92,24 +104,90 @@ struct ProxyData {
   ProxyId prev = kNullProxy, next = kNullProxy;
 };
 
-class Quadtree {
+// A hit of a closest-hit or all-hits cast: the proxy and what the exact test reported.
+struct ProxyHit {
+  ProxyId id = kNullProxy;
+  CastOutput out;
+};
+
+// The segment origin + t * translation, t in [0, maxFraction], against AABBs grown by a radius.
+class SegmentProbe {
  public:
+  SegmentProbe(const RayCastInput& in, float radius);
+  // The fraction where the segment enters `box` grown by the radius, or a value above
+  // maxFraction when it misses it before maxFraction.
+  float entry(const AABB& box, float maxFraction) const {
+    float t0, t1;
+    return clip(box, maxFraction, t0, t1) ? t0 : maxFraction + 1.0f;
+  }
+  // The interval [t0, t1] of [0, maxFraction] inside `box` grown by the radius; false if none.
+  bool clip(const AABB& box, float maxFraction, float& t0, float& t1) const;
+
+ private:
+  Vec2 origin_, translation_, inverse_;
+  float radius_;
+};
+
+// Proxy storage, ids, fat AABBs and the move buffer: what Quadtree and BruteForce share.
+class ProxyStore {
+ public:
+  const AABB& fatAABB(ProxyId id) const { return proxies_[checked(id)].fat; }
+  std::uint64_t userData(ProxyId id) const { return proxies_[checked(id)].userData; }
+  ProxyFilter filter(ProxyId id) const { return proxies_[checked(id)].filter; }
+  bool isStatic(ProxyId id) const { return proxies_[checked(id)].isStatic; }
+  int proxyCount() const { return count_; }
+
+ protected:
+  explicit ProxyStore(const char* name) : name_(name) {}
+  std::size_t checked(ProxyId id) const;
+  ProxyId allocate(const ProxyDef& def);
+  void release(ProxyId id);
+  // Sets a new fat AABB when `aabb` left the old one (or the old one is far too large);
+  // returns whether it did.
+  bool refit(ProxyId id, const AABB& aabb, Vec2 displacement);
+  // updatePairs' shared part: `candidates(id, visit)` calls visit(other) for the proxies whose
+  // fat AABB overlaps id's, from whichever structure the caller has.
+  template <class Candidates>
+  void pairsOfMoved(std::vector<ProxyPair>& pairs, Candidates&& candidates);
+  // Brute-force query loops over the dense array.
+  template <class Visit>
+  bool bruteAABB(const AABB& box, ProxyFilter filter, Visit& visit) const;
+  template <class Callback>
+  void bruteCast(const RayCastInput& in, float radius, ProxyFilter filter, Callback& cb) const;
+  void bruteFindPairs(std::vector<ProxyPair>& pairs) const;
+
+  const char* name_;
+  std::vector<ProxyData> proxies_;
+  std::vector<ProxyId> free_;
+  std::vector<ProxyId> moveBuffer_;
+  int count_ = 0;
+};
+
+class Quadtree : public ProxyStore {
+ public:
+  // Depth chosen from the world's size: the finest cells are at least kFinestCell across.
+  static constexpr int kAutoDepth = -1;
+  static constexpr float kFinestCell = 1.0f;
+  static constexpr int kMaxDepth = 10;  // 2^20 cells on the finest level at most
+  // Below this many proxies every query is a loop over the proxies (measured crossover).
+  static constexpr int kBruteForceBelow = 48;
+
   // worldBounds: the region most proxies live in (the level's bounds); it is made square.
-  // maxDepth: deepest level (0 is the root); clamped to [0, 12].
-  explicit Quadtree(const AABB& worldBounds, int maxDepth = 8);
+  // maxDepth: deepest level (0 is the root), clamped to [0, kMaxDepth].
+  explicit Quadtree(const AABB& worldBounds, int maxDepth = kAutoDepth);
 
   ProxyId createProxy(const ProxyDef& def);
   void destroyProxy(ProxyId id);
-  // New tight AABB for a proxy. Returns true when it left its fat AABB and was re-inserted.
-  bool moveProxy(ProxyId id, const AABB& aabb);
-
-  const AABB& fatAABB(ProxyId id) const { return proxies_[checked(id)].fat; }
-  std::uint64_t userData(ProxyId id) const { return proxies_[checked(id)].userData; }
-  int proxyCount() const { return count_; }
+  // New tight AABB for a proxy, and optionally how far it moved this step. Returns true when it
+  // left its fat AABB and was re-inserted (it then takes part in the next updatePairs).
+  bool moveProxy(ProxyId id, const AABB& aabb, Vec2 displacement = {});
 
   // Every pair of overlapping fat AABBs with at least one moving proxy that passes the
   // filters, each once, sorted. `pairs` is cleared first.
   void findPairs(std::vector<ProxyPair>& pairs) const;
+  // The pairs of findPairs that involve a proxy created or re-inserted since the last call:
+  // with the pairs kept from before that still overlap, exactly findPairs. Clears the buffer.
+  void updatePairs(std::vector<ProxyPair>& pairs);
 
   // Calls visit(id) for every proxy whose fat AABB overlaps `box` and passes the filter
   // (category against the proxies' masks and the reverse); visit returns false to stop.
@@ -118,9 +196,18 @@ class Quadtree {
   std::vector<ProxyId> queryAABB(const AABB& box, ProxyFilter filter = {}) const;
   std::vector<ProxyId> queryPoint(Vec2 p, ProxyFilter filter = {}) const;
 
-  // Checks every invariant (links, placement, counts); throws std::logic_error naming the
-  // first broken one.
+  // Ray (radius 0) or swept-circle cast along origin + t * translation, t in [0, maxFraction].
+  // Calls cb(id, current) for every proxy whose fat AABB, grown by the radius, the cast enters
+  // before current.maxFraction, nearest cells first; cb returns the new max fraction (the hit's
+  // fraction clips the cast there, current.maxFraction or more goes on, 0 or less stops).
+  template <class Callback>
+  void cast(const RayCastInput& in, float radius, ProxyFilter filter, Callback&& cb) const;
+
+  // Checks every invariant (links, placement, counts, move buffer); throws std::logic_error
+  // naming the first broken one.
   void validate() const;
+
+  int maxDepth() const { return maxDepth_; }
 
  private:
   struct Level {
@@ -134,8 +221,8 @@ class Quadtree {
     ProxyId outside = kNullProxy;  // list of proxies kept outside the cells
     int outsideCount = 0;
   };
+  class CellWalk;
 
-  std::size_t checked(ProxyId id) const;
   void place(ProxyId id);
   void unlink(ProxyId id);
   void link(ProxyId id, Tree& tree, int level, int cell);
@@ -144,36 +231,127 @@ class Quadtree {
   const Tree& treeOf(const ProxyData& p) const { return p.isStatic ? static_ : moving_; }
   template <class Visit>
   bool queryTree(const Tree& tree, const AABB& box, Visit& visit) const;
+  bool small() const { return count_ < kBruteForceBelow; }
 
   Vec2 origin_{};
   float size_ = 0.0f;
   int maxDepth_ = 0;
   Tree static_, moving_;
-  std::vector<ProxyData> proxies_;
-  std::vector<ProxyId> free_;
-  int count_ = 0;
 };
 
 // The reference: the same interface, every proxy against every proxy.
-class BruteForce {
+class BruteForce : public ProxyStore {
  public:
+  BruteForce() : ProxyStore("BruteForce") {}
   ProxyId createProxy(const ProxyDef& def);
   void destroyProxy(ProxyId id);
-  bool moveProxy(ProxyId id, const AABB& aabb);
-  const AABB& fatAABB(ProxyId id) const { return proxies_[checked(id)].fat; }
-  int proxyCount() const { return count_; }
-  void findPairs(std::vector<ProxyPair>& pairs) const;
+  bool moveProxy(ProxyId id, const AABB& aabb, Vec2 displacement = {});
+  void findPairs(std::vector<ProxyPair>& pairs) const { bruteFindPairs(pairs); }
+  void updatePairs(std::vector<ProxyPair>& pairs);
+  template <class Visit>
+  void queryAABB(const AABB& box, ProxyFilter filter, Visit&& visit) const {
+    bruteAABB(box, filter, visit);
+  }
   std::vector<ProxyId> queryAABB(const AABB& box, ProxyFilter filter = {}) const;
   std::vector<ProxyId> queryPoint(Vec2 p, ProxyFilter filter = {}) const;
-
- private:
-  std::size_t checked(ProxyId id) const;
-  std::vector<ProxyData> proxies_;
-  std::vector<ProxyId> free_;
-  int count_ = 0;
+  template <class Callback>
+  void cast(const RayCastInput& in, float radius, ProxyFilter filter, Callback&& cb) const {
+    bruteCast(in, radius, filter, cb);
+  }
 };
 
+// The nearest hit of a ray (radius 0) or swept circle through either broadphase.
+// exact(id, input) is the exact test of that proxy's shape against the whole cast, returning a
+// CastOutput. Ties in fraction go to the lower id, so the answer does not
+// depend on the traversal order. out.hit is false when nothing was hit.
+template <class Broadphase, class Exact>
+ProxyHit castClosest(const Broadphase& bp, const RayCastInput& in, float radius, ProxyFilter filter,
+                     Exact&& exact);
+// Every hit along the cast, sorted by fraction, then by id.
+template <class Broadphase, class Exact>
+std::vector<ProxyHit> castAll(const Broadphase& bp, const RayCastInput& in, float radius,
+                              ProxyFilter filter, Exact&& exact);
+
 // ---------------------------------------------------------------------------------------------
+
+inline SegmentProbe::SegmentProbe(const RayCastInput& in, float radius)
+    : origin_(in.origin), translation_(in.translation), radius_(radius) {
+  constexpr float inf = std::numeric_limits<float>::infinity();
+  inverse_ = {translation_.x != 0.0f ? 1.0f / translation_.x : inf,
+              translation_.y != 0.0f ? 1.0f / translation_.y : inf};
+}
+
+inline bool SegmentProbe::clip(const AABB& box, float maxFraction, float& t0, float& t1) const {
+  // Slabs: on each axis the interval of t where the segment is between the box's planes.
+  t0 = 0.0f;
+  t1 = maxFraction;
+  const float lo[2] = {box.lower.x - radius_, box.lower.y - radius_};
+  const float hi[2] = {box.upper.x + radius_, box.upper.y + radius_};
+  const float o[2] = {origin_.x, origin_.y};
+  const float d[2] = {translation_.x, translation_.y};
+  const float inv[2] = {inverse_.x, inverse_.y};
+  for (int k = 0; k < 2; ++k) {
+    if (d[k] == 0.0f) {
+      if (o[k] < lo[k] || o[k] > hi[k]) return false;
+      continue;
+    }
+    float a = (lo[k] - o[k]) * inv[k], b = (hi[k] - o[k]) * inv[k];
+    if (a > b) std::swap(a, b);
+    t0 = std::max(t0, a);
+    t1 = std::min(t1, b);
+  }
+  return t0 <= t1;
+}
+
+template <class Candidates>
+void ProxyStore::pairsOfMoved(std::vector<ProxyPair>& pairs, Candidates&& candidates) {
+  pairs.clear();
+  for (ProxyId self : moveBuffer_) {
+    const ProxyData& m = proxies_[static_cast<std::size_t>(self)];
+    if (!m.alive || !m.moved) continue;
+    candidates(self, [&](ProxyId other) {
+      const ProxyData& o = proxies_[static_cast<std::size_t>(other)];
+      // A pair of two buffered proxies is reported from the lower id only.
+      if (other == self || (o.moved && other < self) || (m.isStatic && o.isStatic)) return true;
+      if (shouldCollide(m.filter, o.filter))
+        pairs.push_back(self < other ? ProxyPair{self, other} : ProxyPair{other, self});
+      return true;
+    });
+  }
+  for (ProxyId id : moveBuffer_)
+    proxies_[static_cast<std::size_t>(id)].moved = false;
+  moveBuffer_.clear();
+  // A proxy destroyed and re-created under the same id appears twice in the buffer.
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+}
+
+template <class Visit>
+bool ProxyStore::bruteAABB(const AABB& box, ProxyFilter filter, Visit& visit) const {
+  for (std::size_t i = 0; i < proxies_.size(); ++i) {
+    const ProxyData& p = proxies_[i];
+    if (p.alive && overlaps(p.fat, box) && shouldCollide(filter, p.filter) &&
+        !visit(static_cast<ProxyId>(i)))
+      return false;
+  }
+  return true;
+}
+
+template <class Callback>
+void ProxyStore::bruteCast(const RayCastInput& in, float radius, ProxyFilter filter,
+                           Callback& cb) const {
+  const SegmentProbe probe(in, radius);
+  RayCastInput current = in;
+  for (std::size_t i = 0; i < proxies_.size(); ++i) {
+    const ProxyData& p = proxies_[i];
+    if (!p.alive || !shouldCollide(filter, p.filter) ||
+        probe.entry(p.fat, current.maxFraction) > current.maxFraction)
+      continue;
+    const float f = cb(static_cast<ProxyId>(i), current);
+    if (!(f > 0.0f)) return;
+    current.maxFraction = std::min(current.maxFraction, f);
+  }
+}
 
 template <class Visit>
 bool Quadtree::queryTree(const Tree& tree, const AABB& box, Visit& visit) const {
@@ -212,10 +390,232 @@ template <class Visit>
 void Quadtree::queryAABB(const AABB& box, ProxyFilter filter, Visit&& visit) const {
   if (!(box.lower.x <= box.upper.x) || !(box.lower.y <= box.upper.y))  // false for NaN too
     throw InvalidProxy("Quadtree::queryAABB: NaN or inverted query box");
+  if (small()) {
+    bruteAABB(box, filter, visit);
+    return;
+  }
   auto filtered = [&](ProxyId id) {
     return !shouldCollide(filter, proxies_[id].filter) || visit(id);
   };
   if (queryTree(moving_, box, filtered)) queryTree(static_, box, filtered);
+}
+
+// The cells of one level that a cast can reach, in the order it reaches them. A proxy in cell
+// X (in cell units along one axis) lies within [X - 1/2, X + 3/2]; grown by the cast's radius
+// that is [X - h, X + 1 + h] with h = 1/2 + radius / cellSize. The cast's point a(t) can touch
+// it exactly when X is in the window [a - 1 - h, a + h], so along each axis a window of cells
+// slides with the cast: a cell enters when the window's leading edge passes it and leaves when
+// the trailing edge does. A cell (X, Y) is visited once, when the later of its column and row
+// enters while the other is still in its window, and nothing in it can be hit before that
+// moment: that moment is the cell's lower bound, and walks are advanced in its order.
+class Quadtree::CellWalk {
+ public:
+  static constexpr float kNever = std::numeric_limits<float>::infinity();
+
+  // Returns false when the cast misses the level's cells within [0, maxFraction].
+  bool start(const Quadtree& qt, const Tree& tree, int level, const RayCastInput& in,
+             float radius) {
+    tree_ = &tree;
+    level_ = level;
+    const Level& lv = tree.levels[static_cast<std::size_t>(level)];
+    side_ = lv.side;
+    const float inv = 1.0f / lv.cellSize;
+    // A thousandth of a cell of slack over the exact half: rounding in the cell coordinates
+    // must never drop a cell.
+    h_ = 0.501f + radius * inv;
+    const Vec2 o = (in.origin - qt.origin_) * inv, d = in.translation * inv;
+    // The part of the cast that can touch any cell: a in [-h, side + h] on both axes.
+    const float hi = static_cast<float>(side_) + h_;
+    const SegmentProbe probe(RayCastInput{o, d, in.maxFraction}, 0.0f);
+    const AABB grid{{-h_, -h_}, {hi, hi}};
+    float t0 = 0.0f;
+    if (!probe.clip(grid, in.maxFraction, t0, end_)) return false;
+    axis_[0].start(o.x, d.x, t0, h_, side_);
+    axis_[1].start(o.y, d.y, t0, h_, side_);
+    next_ = t0;
+    started_ = false;
+    return true;
+  }
+
+  // The lower bound of the next cells this walk will visit (kNever when done).
+  float next() const { return next_; }
+
+  // Visits the next cells; visitCell(level, cell) returns false to stop the whole cast.
+  template <class VisitCell>
+  bool step(VisitCell& visitCell) {
+    if (!started_) {
+      started_ = true;
+      if (!visitBlock(axis_[0].lo, axis_[0].hi, axis_[1].lo, axis_[1].hi, visitCell)) return false;
+    } else {
+      // Trailing edges that passed before this entry first; at a tie the cell is still in.
+      const int k = axis_[0].enter <= axis_[1].enter ? 0 : 1;
+      const float t = axis_[k].enter;
+      for (Axis& a : axis_)
+        while (a.leave < t)
+          a.advanceLeave();
+      const int entering = axis_[k].advanceEnter();
+      const Axis& other = axis_[1 - k];
+      const bool ok = k == 0 ? visitBlock(entering, entering, other.lo, other.hi, visitCell)
+                             : visitBlock(other.lo, other.hi, entering, entering, visitCell);
+      if (!ok) return false;
+    }
+    next_ = std::min(axis_[0].enter, axis_[1].enter);
+    if (next_ > end_) next_ = kNever;  // past the grid
+    return true;
+  }
+
+ private:
+  // One axis: the window [lo, hi] of cell indices (not clamped to the grid) and the times of
+  // its next entry and exit.
+  struct Axis {
+    float o = 0, d = 0, h = 0;
+    int lo = 0, hi = 0, side = 0;
+    float enter = kNever, leave = kNever;
+    void start(float origin, float dir, float t0, float halo, int cells) {
+      o = origin;
+      d = dir;
+      h = halo;
+      side = cells;
+      const float a = o + t0 * d;
+      lo = static_cast<int>(std::ceil(a - 1.0f - h));
+      hi = static_cast<int>(std::floor(a + h));
+      scheduleEnter();
+      scheduleLeave();
+    }
+    // Entries stop at the grid's edge; exits matter only while entries on the other axis
+    // still come.
+    void scheduleEnter() {
+      if (d > 0.0f)
+        enter = hi + 1 < side ? (static_cast<float>(hi + 1) - h - o) / d : kNever;
+      else if (d < 0.0f)
+        enter = lo - 1 >= 0 ? (static_cast<float>(lo) + h - o) / d : kNever;
+      else
+        enter = kNever;
+    }
+    void scheduleLeave() {
+      if (d > 0.0f)
+        leave = (static_cast<float>(lo + 1) + h - o) / d;
+      else if (d < 0.0f)
+        leave = (static_cast<float>(hi) - h - o) / d;
+      else
+        leave = kNever;
+    }
+    int advanceEnter() {
+      const int index = d > 0.0f ? ++hi : --lo;
+      scheduleEnter();
+      return index;
+    }
+    void advanceLeave() {
+      if (d > 0.0f)
+        ++lo;
+      else
+        --hi;
+      scheduleLeave();
+    }
+  };
+
+  template <class VisitCell>
+  bool visitBlock(int x0, int x1, int y0, int y1, VisitCell& visitCell) const {
+    x0 = std::max(x0, 0);
+    y0 = std::max(y0, 0);
+    x1 = std::min(x1, side_ - 1);
+    y1 = std::min(y1, side_ - 1);
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x)
+        if (!visitCell(*tree_, level_, y * side_ + x)) return false;
+    return true;
+  }
+
+  const Tree* tree_ = nullptr;
+  int level_ = 0, side_ = 0;
+  float h_ = 0, next_ = kNever, end_ = kNever;
+  bool started_ = false;
+  Axis axis_[2];
+};
+
+template <class Callback>
+void Quadtree::cast(const RayCastInput& in, float radius, ProxyFilter filter, Callback&& cb) const {
+  if (!isFinite(in.origin) || !isFinite(in.translation) || !std::isfinite(in.maxFraction) ||
+      !std::isfinite(radius) || radius < 0.0f)
+    throw InvalidProxy("Quadtree::cast: NaN, infinite or negative input");
+  if (small()) {
+    bruteCast(in, radius, filter, cb);
+    return;
+  }
+  const SegmentProbe probe(in, radius);
+  RayCastInput current = in;
+  bool stopped = false;
+  auto visitList = [&](ProxyId head) {
+    for (ProxyId id = head; id != kNullProxy; id = proxies_[static_cast<std::size_t>(id)].next) {
+      const ProxyData& p = proxies_[static_cast<std::size_t>(id)];
+      if (!shouldCollide(filter, p.filter) ||
+          probe.entry(p.fat, current.maxFraction) > current.maxFraction)
+        continue;
+      const float f = cb(id, current);
+      if (!(f > 0.0f)) return !(stopped = true);
+      current.maxFraction = std::min(current.maxFraction, f);
+    }
+    return true;
+  };
+  // The outside lists first: anything in them may be hit at fraction 0.
+  if (!visitList(moving_.outside) || !visitList(static_.outside)) return;
+  // One walk per populated level of either tree, always advancing the one whose next cells
+  // come first: the cast meets cells in order of their lower bound whatever their level.
+  std::array<CellWalk, 2 * (kMaxDepth + 1)> walks;
+  int n = 0;
+  for (const Tree* tree : {&moving_, &static_})
+    for (int l = 0; l <= maxDepth_; ++l)
+      if (tree->levels[static_cast<std::size_t>(l)].population > 0 &&
+          walks[static_cast<std::size_t>(n)].start(*this, *tree, l, in, radius))
+        ++n;
+  auto visitCell = [&](const Tree& tree, int level, int cell) {
+    return visitList(
+        tree.levels[static_cast<std::size_t>(level)].heads[static_cast<std::size_t>(cell)]);
+  };
+  while (true) {
+    int best = -1;
+    float bestT = CellWalk::kNever;
+    for (int i = 0; i < n; ++i)
+      if (walks[static_cast<std::size_t>(i)].next() < bestT) {
+        bestT = walks[static_cast<std::size_t>(i)].next();
+        best = i;
+      }
+    if (best < 0 || bestT > current.maxFraction) return;
+    if (!walks[static_cast<std::size_t>(best)].step(visitCell)) return;
+  }
+}
+
+template <class Broadphase, class Exact>
+ProxyHit castClosest(const Broadphase& bp, const RayCastInput& in, float radius, ProxyFilter filter,
+                     Exact&& exact) {
+  ProxyHit best;
+  bp.cast(in, radius, filter, [&](ProxyId id, const RayCastInput& current) {
+    // The exact test sees the whole cast, not the clipped one: its result then cannot depend on
+    // the order proxies come in, and a tie with the best so far is not lost to its rounding.
+    const CastOutput out = exact(id, in);
+    if (!out.hit || out.fraction > current.maxFraction) return current.maxFraction;
+    if (!best.out.hit || out.fraction < best.out.fraction ||
+        (out.fraction == best.out.fraction && id < best.id))
+      best = {id, out};
+    // Clip at the hit; a hit at fraction 0 cannot be beaten but may tie with a lower id.
+    return std::max(out.fraction, std::numeric_limits<float>::min());
+  });
+  return best;
+}
+
+template <class Broadphase, class Exact>
+std::vector<ProxyHit> castAll(const Broadphase& bp, const RayCastInput& in, float radius,
+                              ProxyFilter filter, Exact&& exact) {
+  std::vector<ProxyHit> hits;
+  bp.cast(in, radius, filter, [&](ProxyId id, const RayCastInput& current) {
+    const CastOutput out = exact(id, in);
+    if (out.hit) hits.push_back({id, out});
+    return current.maxFraction;
+  });
+  std::sort(hits.begin(), hits.end(), [](const ProxyHit& a, const ProxyHit& b) {
+    return a.out.fraction != b.out.fraction ? a.out.fraction < b.out.fraction : a.id < b.id;
+  });
+  return hits;
 }
 
 }  // namespace rc

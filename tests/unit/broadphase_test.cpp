@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <vector>
@@ -38,11 +39,28 @@ AABB boxAt(Vec2 c, Vec2 half) {
   return {c - half, c + half};
 }
 
-// Both broadphases driven by the same calls.
+// The exact shape behind each proxy in these tests: the disc inscribed in its fat AABB (so
+// some AABB candidates are misses), or the fat AABB itself (so a cell the traversal skips shows
+// up even when only a corner of a proxy sticks into the cast), grown by the cast's radius.
+rc::CastOutput exactCast(const rc::ProxyStore& bp, ProxyId id, const rc::RayCastInput& in,
+                         float radius, bool disc) {
+  const AABB& fat = bp.fatAABB(id);
+  Vec2 e = fat.extents();
+  if (disc) return rc::rayCast(rc::Circle{fat.center(), std::min(e.x, e.y) + radius}, in);
+  return rc::rayCast(rc::Box{fat.center(), e + Vec2{radius, radius}}, in);
+}
+
+bool sameHit(const rc::ProxyHit& a, const rc::ProxyHit& b) {
+  return a.id == b.id && a.out.hit == b.out.hit && a.out.fraction == b.out.fraction;
+}
+
+// Both broadphases driven by the same calls, and the pair set a contact manager would keep
+// from updatePairs (new pairs added, pairs whose fat AABBs parted or whose proxy died dropped).
 struct Twin {
   rc::Quadtree tree{kWorld, 8};
   rc::BruteForce brute;
   std::vector<ProxyId> live;
+  std::vector<rc::ProxyPair> kept;
 
   ProxyId add(const rc::ProxyDef& def) {
     ProxyId a = tree.createProxy(def), b = brute.createProxy(def);
@@ -55,9 +73,10 @@ struct Twin {
     tree.destroyProxy(id);
     brute.destroyProxy(id);
     live.erase(live.begin() + static_cast<std::ptrdiff_t>(index));
+    std::erase_if(kept, [&](const rc::ProxyPair& p) { return p.a == id || p.b == id; });
   }
-  void move(ProxyId id, const AABB& box) {
-    EXPECT_EQ(tree.moveProxy(id, box), brute.moveProxy(id, box));
+  void move(ProxyId id, const AABB& box, Vec2 displacement = {}) {
+    EXPECT_EQ(tree.moveProxy(id, box, displacement), brute.moveProxy(id, box, displacement));
   }
   // Pairs and a set of queries must agree exactly.
   void check(rc::Random& rng, const std::string& what) {
@@ -67,6 +86,22 @@ struct Twin {
     brute.findPairs(pb);
     ASSERT_EQ(pt.size(), pb.size()) << what;
     ASSERT_TRUE(pt == pb) << what;
+
+    std::vector<rc::ProxyPair> nt, nb;
+    tree.updatePairs(nt);
+    brute.updatePairs(nb);
+    ASSERT_TRUE(nt == nb) << what << ": new pairs differ";
+    ASSERT_TRUE(std::is_sorted(nt.begin(), nt.end()));
+    std::erase_if(kept, [&](const rc::ProxyPair& p) {
+      return !rc::overlaps(tree.fatAABB(p.a), tree.fatAABB(p.b));
+    });
+    std::vector<rc::ProxyPair> merged;
+    std::set_union(kept.begin(), kept.end(), nt.begin(), nt.end(), std::back_inserter(merged));
+    kept = merged;
+    ASSERT_TRUE(kept == pt) << what << ": kept " << kept.size() << " pairs, findPairs "
+                            << pt.size();
+    ASSERT_NO_THROW(tree.validate()) << what;
+
     for (int q = 0; q < 20; ++q) {
       Vec2 c = rng.inBox({-150, -150}, {150, 150});
       AABB box = boxAt(c, {rng.uniform(0, 8), rng.uniform(0, 8)});
@@ -74,6 +109,58 @@ struct Twin {
       ASSERT_EQ(tree.queryAABB(box, f), brute.queryAABB(box, f)) << what << " query " << q;
       ASSERT_EQ(tree.queryPoint(c), brute.queryPoint(c)) << what << " point " << q;
     }
+    for (int q = 0; q < 40; ++q)
+      checkCast(rng, what + " cast " + std::to_string(q));
+  }
+
+  void checkCast(rc::Random& rng, const std::string& what) {
+    rc::RayCastInput in;
+    in.origin = rng.inBox({-150, -150}, {150, 150});
+    switch (rng.below(4)) {
+      case 0:  // along a cell edge of the finest level, axis-aligned
+        in.origin.x = -100.0f + 200.0f / 256.0f * static_cast<float>(rng.below(257));
+        in.translation = {0, rng.uniform(-300, 300)};
+        break;
+      case 1:
+        in.translation = {rng.uniform(-300, 300), 0};
+        break;
+      case 2:  // short
+        in.translation = rng.inBox({-3, -3}, {3, 3});
+        break;
+      default:
+        in.translation = rng.inBox({-300, -300}, {300, 300});
+    }
+    in.maxFraction = rng.below(2) == 0 ? 1.0f : rng.uniform(0, 1);
+    const float radius = rng.below(2) == 0 ? 0.0f : rng.uniform(0, 3);
+    rc::ProxyFilter f{1u << rng.below(3), 0xFFFFFFFFu};
+    const bool disc = rng.below(2) == 0;
+    auto exactTree = [&](ProxyId id, const rc::RayCastInput& r) {
+      return exactCast(tree, id, r, radius, disc);
+    };
+    auto exactBrute = [&](ProxyId id, const rc::RayCastInput& r) {
+      return exactCast(brute, id, r, radius, disc);
+    };
+    rc::ProxyHit ct = rc::castClosest(tree, in, radius, f, exactTree);
+    rc::ProxyHit cb = rc::castClosest(brute, in, radius, f, exactBrute);
+    ASSERT_TRUE(sameHit(ct, cb)) << what << ": closest " << ct.id << " at " << ct.out.fraction
+                                 << ", brute force " << cb.id << " at " << cb.out.fraction;
+    std::vector<rc::ProxyHit> at = rc::castAll(tree, in, radius, f, exactTree);
+    std::vector<rc::ProxyHit> ab = rc::castAll(brute, in, radius, f, exactBrute);
+    ASSERT_EQ(at.size(), ab.size()) << what;
+    for (std::size_t i = 0; i < at.size(); ++i)
+      ASSERT_TRUE(sameHit(at[i], ab[i])) << what << " hit " << i;
+    // And the brute force against a plain loop over the live proxies, no broadphase at all.
+    rc::ProxyHit best;
+    for (ProxyId id : live) {
+      rc::CastOutput out = exactCast(brute, id, in, radius, disc);
+      if (!rc::shouldCollide(f, brute.filter(id)) || !out.hit || out.fraction > in.maxFraction)
+        continue;
+      if (!best.out.hit || out.fraction < best.out.fraction ||
+          (out.fraction == best.out.fraction && id < best.id))
+        best = {id, out};
+    }
+    ASSERT_TRUE(sameHit(cb, best)) << what << ": brute force against the plain loop";
+    ASSERT_TRUE(at.empty() || sameHit(at.front(), ct)) << what;
   }
 };
 
@@ -116,35 +203,37 @@ Vec2 sizeFor(rc::Random& rng, Layout layout) {
   return {rng.uniform(0.05f, 1.0f), rng.uniform(0.05f, 1.0f)};
 }
 
-void runScene(Layout layout, std::uint64_t seed, const char* name) {
+void runScene(Layout layout, std::uint64_t seed, const char* name, int count = 400) {
   rc::Random rng(seed);
   Twin t;
-  std::vector<Vec2> vel;
+  std::vector<Vec2> vel, pos, half;
   auto addOne = [&]() {
     rc::ProxyDef def;
-    def.aabb = boxAt(positionFor(rng, layout), sizeFor(rng, layout));
+    pos.push_back(positionFor(rng, layout));
+    half.push_back(sizeFor(rng, layout));
+    def.aabb = boxAt(pos.back(), half.back());
     def.isStatic = rng.below(4) == 0;
     def.filter.category = 1u << rng.below(3);
     def.filter.mask = rng.below(5) == 0 ? ~def.filter.category : 0xFFFFFFFFu;
     t.add(def);
     vel.push_back(def.isStatic ? Vec2{} : rng.inBox({-1, -1}, {1, 1}));
   };
-  for (int i = 0; i < 400; ++i)
+  for (int i = 0; i < count; ++i)
     addOne();
   t.check(rng, std::string(name) + " initial");
   for (int step = 0; step < 60; ++step) {
     for (std::size_t i = 0; i < t.live.size(); ++i) {
       if (vel[i] == Vec2{}) continue;
-      AABB fat = t.tree.fatAABB(t.live[i]);
-      Vec2 c = fat.center() + vel[i];
-      Vec2 e = rc::max(fat.extents() - Vec2{rc::kAabbMargin, rc::kAabbMargin}, Vec2{0, 0});
-      t.move(t.live[i], boxAt(c, e));
+      pos[i] += vel[i];
+      // Half the movers report their displacement (fat AABBs stretched along the motion).
+      t.move(t.live[i], boxAt(pos[i], half[i]), i % 2 == 0 ? vel[i] : Vec2{});
     }
     // Churn: remove and add a few every step.
     for (int k = 0; k < 5 && !t.live.empty(); ++k) {
       std::size_t index = rng.below(static_cast<std::uint32_t>(t.live.size()));
       t.remove(index);
-      vel.erase(vel.begin() + static_cast<std::ptrdiff_t>(index));
+      for (auto* v : {&vel, &pos, &half})
+        v->erase(v->begin() + static_cast<std::ptrdiff_t>(index));
     }
     for (int k = 0; k < 5; ++k)
       addOne();
@@ -167,6 +256,159 @@ TEST(Broadphase, ParityMixedSizes) {
 }
 TEST(Broadphase, ParityOutsideTheWorld) {
   runScene(Layout::outside, 5, "outside");
+}
+// Few proxies: the quadtree answers by brute force below kBruteForceBelow, then by the tree as
+// the churn adds more.
+TEST(Broadphase, ParitySmallScenes) {
+  static_assert(rc::Quadtree::kBruteForceBelow > 10);
+  runScene(Layout::uniform, 7, "small uniform", 10);
+  runScene(Layout::mixedSizes, 8, "small mixed", rc::Quadtree::kBruteForceBelow - 3);
+}
+
+// Closest-first traversal with early out: a closest-hit cast through a dense scene looks at a
+// few dozen proxies, not all of them.
+TEST(Broadphase, ClosestHitCastStopsEarly) {
+  rc::Random rng(12);
+  rc::Quadtree tree(AABB{{0, 0}, {256, 256}});
+  std::vector<Vec2> centres;
+  for (int i = 0; i < 8000; ++i) {  // one disc of radius 0.5 per 8 m^2
+    centres.push_back(rng.inBox({0, 0}, {256, 256}));
+    tree.createProxy(moving(boxAt(centres.back(), {0.5f, 0.5f})));
+  }
+  long candidates = 0, hits = 0;
+  const int casts = 1000;
+  for (int i = 0; i < casts; ++i) {
+    rc::RayCastInput in{rng.inBox({0, 0}, {256, 256}), {}, 1};
+    float angle = rng.uniform(0, 6.2831853f);
+    in.translation = 50.0f * Vec2{std::cos(angle), std::sin(angle)};
+    rc::ProxyHit h =
+        rc::castClosest(tree, in, 0.0f, {}, [&](ProxyId id, const rc::RayCastInput& r) {
+          ++candidates;
+          return rc::rayCast(rc::Circle{centres[static_cast<std::size_t>(id)], 0.5f}, r);
+        });
+    hits += h.out.hit;
+  }
+  // Mean free path among these discs is 8 m, so nearly every 50 m ray hits; without clipping
+  // at each hit each cast would test every proxy its 50 m pass touches (a band 1.2 m wide:
+  // about 8 proxies), and in a random order about half of those. Measured: 1.6.
+  EXPECT_GT(hits, casts * 95 / 100);
+  EXPECT_LT(static_cast<double>(candidates) / casts, 2.5) << candidates;
+}
+
+TEST(Broadphase, UpdatePairsReportsOnlyPairsOfMovedProxies) {
+  rc::Quadtree tree(kWorld);
+  std::vector<rc::ProxyPair> pairs;
+  ProxyId a = tree.createProxy(moving(boxAt({0, 0}, {1, 1})));
+  ProxyId b = tree.createProxy(moving(boxAt({1.5f, 0}, {1, 1})));
+  tree.updatePairs(pairs);
+  ASSERT_EQ(pairs, (std::vector<rc::ProxyPair>{{a, b}}));
+  tree.updatePairs(pairs);
+  EXPECT_TRUE(pairs.empty());  // nothing moved
+  // A wall added next to a resting mover pairs with it at once.
+  ProxyId wall = tree.createProxy(fixed(boxAt({-1.5f, 0}, {0.5f, 5})));
+  tree.updatePairs(pairs);
+  EXPECT_EQ(pairs, (std::vector<rc::ProxyPair>{{a, wall}}));
+  // A small move inside the fat AABB reports nothing; leaving it reports all its overlaps.
+  EXPECT_FALSE(tree.moveProxy(b, boxAt({1.55f, 0}, {1, 1})));
+  tree.updatePairs(pairs);
+  EXPECT_TRUE(pairs.empty());
+  EXPECT_TRUE(tree.moveProxy(b, boxAt({1.3f, 0}, {1, 1})));
+  tree.updatePairs(pairs);
+  EXPECT_EQ(pairs, (std::vector<rc::ProxyPair>{{a, b}}));
+  tree.validate();
+}
+
+TEST(Broadphase, FatAABBFollowsTheMotionAndShrinksWhenItStops) {
+  rc::Quadtree tree(kWorld);
+  ProxyId id = tree.createProxy(moving(boxAt({0, 0}, {0.5f, 0.5f})));
+  EXPECT_TRUE(tree.moveProxy(id, boxAt({0.5f, 0}, {0.5f, 0.5f}), {0.5f, 0}));
+  AABB fat = tree.fatAABB(id);
+  EXPECT_FLOAT_EQ(fat.upper.x, 1.0f + rc::kAabbMargin + rc::kDisplacementMultiplier * 0.5f);
+  EXPECT_FLOAT_EQ(fat.lower.x, -rc::kAabbMargin);
+  // Moving on at the same speed stays inside for a few steps.
+  EXPECT_FALSE(tree.moveProxy(id, boxAt({1.0f, 0}, {0.5f, 0.5f}), {0.5f, 0}));
+  EXPECT_FALSE(tree.moveProxy(id, boxAt({1.5f, 0}, {0.5f, 0.5f}), {0.5f, 0}));
+  // At rest the stretched box is far larger than needed: it is refitted.
+  EXPECT_TRUE(tree.moveProxy(id, boxAt({1.5f, 0}, {0.5f, 0.5f}), {0, 0}));
+  EXPECT_EQ(tree.fatAABB(id), rc::inflate(boxAt({1.5f, 0}, {0.5f, 0.5f}), rc::kAabbMargin));
+  tree.validate();
+}
+
+TEST(Broadphase, CastEdgeCases) {
+  rc::Random rng(13);
+  Twin t;
+  for (int i = 0; i < 200; ++i)
+    t.add(moving(boxAt(rng.inBox({-100, -100}, {100, 100}), {1, 1})));
+  ProxyId target = t.add(moving(boxAt({0, 0}, {1, 1})));
+  auto exact = [&](ProxyId id, const rc::RayCastInput& r) {
+    return exactCast(t.tree, id, r, 0, false);
+  };
+  // Zero length: only what contains the origin, at fraction 0.
+  rc::ProxyHit h = rc::castClosest(t.tree, {{0, 0}, {0, 0}, 1}, 0.0f, {}, exact);
+  EXPECT_TRUE(h.out.hit);
+  EXPECT_EQ(h.id, target);
+  EXPECT_EQ(h.out.fraction, 0.0f);
+  // From far outside the world, through it and out again.
+  for (int q = 0; q < 50; ++q)
+    t.checkCast(rng, "edge case " + std::to_string(q));
+  rc::RayCastInput far{{-1e6f, 0.1f}, {2e6f, 0}, 1};
+  EXPECT_TRUE(
+      sameHit(rc::castClosest(t.tree, far, 0.0f, {}, exact),
+              rc::castClosest(t.brute, far, 0.0f, {}, [&](ProxyId id, const rc::RayCastInput& r) {
+                return exactCast(t.brute, id, r, 0, false);
+              })));
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  auto none = [](ProxyId, const rc::RayCastInput& r) { return r.maxFraction; };
+  EXPECT_THROW(t.tree.cast({{nan, 0}, {1, 0}, 1}, 0.0f, {}, none), rc::InvalidProxy);
+  EXPECT_THROW(t.tree.cast({{0, 0}, {1, 0}, nan}, 0.0f, {}, none), rc::InvalidProxy);
+  EXPECT_THROW(t.tree.cast({{0, 0}, {1, 0}, 1}, -1.0f, {}, none), rc::InvalidProxy);
+}
+
+// Proxies as large as their cells, centred near a cell corner, stick out of their cell by
+// almost half a cell: rays that only touch that part must still find them (a traversal that
+// grows cells by less than half a cell fails here).
+TEST(Broadphase, CastsFindProxiesStickingOutOfTheirCells) {
+  rc::Random rng(11);
+  Twin t;
+  const float cell = 200.0f / 256.0f;  // finest level of kWorld at depth 8
+  std::vector<AABB> tight;
+  for (int i = 0; i < 300; ++i) {
+    Vec2 corner{-100.0f + cell * static_cast<float>(1 + rng.below(254)),
+                -100.0f + cell * static_cast<float>(1 + rng.below(254))};
+    Vec2 c = corner + Vec2{rng.uniform(0, 0.01f), rng.uniform(0, 0.01f)} * cell;
+    if (rng.below(2)) c = corner - Vec2{rng.uniform(0, 0.01f), rng.uniform(0, 0.01f)} * cell;
+    float half = 0.5f * cell - rc::kAabbMargin;  // fat span = one cell: the finest level
+    tight.push_back(boxAt(c, {half, half}));
+    t.add(moving(tight.back()));
+  }
+  t.tree.validate();
+  int hits = 0;
+  for (std::size_t i = 0; i < t.live.size(); ++i) {
+    const AABB& fat = t.tree.fatAABB(t.live[i]);
+    // Grazing the fat box's far sides, along and across the axes.
+    const rc::RayCastInput rays[] = {
+        {{fat.lower.x + 1e-3f, fat.center().y - 3}, {0, 6}, 1},
+        {{fat.upper.x - 1e-3f, fat.center().y + 3}, {0, -6}, 1},
+        {{fat.center().x - 3, fat.lower.y + 1e-3f}, {6, 0}, 1},
+        {{fat.center().x + 3, fat.upper.y - 1e-3f}, {-6, 0}, 1},
+        {{fat.lower.x - 2, fat.lower.y + 2.002f}, {4, -4}, 1},  // across the corner
+    };
+    for (const rc::RayCastInput& in : rays) {
+      std::vector<rc::ProxyHit> a =
+          rc::castAll(t.tree, in, 0.0f, {}, [&](ProxyId id, const rc::RayCastInput& r) {
+            return exactCast(t.tree, id, r, 0, false);
+          });
+      std::vector<rc::ProxyHit> b =
+          rc::castAll(t.brute, in, 0.0f, {}, [&](ProxyId id, const rc::RayCastInput& r) {
+            return exactCast(t.brute, id, r, 0, false);
+          });
+      ASSERT_EQ(a.size(), b.size()) << "proxy " << i;
+      for (std::size_t k = 0; k < a.size(); ++k)
+        ASSERT_TRUE(sameHit(a[k], b[k])) << "proxy " << i << " hit " << k;
+      hits += static_cast<int>(a.size());
+    }
+  }
+  EXPECT_GE(hits, 5 * 300);  // every ray hits at least the proxy it was aimed at
 }
 
 TEST(Broadphase, ThousandProxiesAtOnePoint) {

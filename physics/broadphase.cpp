@@ -66,17 +66,19 @@ void ProxyStore::release(ProxyId id) {
 
 bool ProxyStore::refit(ProxyId id, const AABB& aabb, Vec2 displacement) {
   ProxyData& p = proxies_[checked(id)];
-  checkAABB(aabb, name_);
-  if (!isFinite(displacement))
-    throw InvalidProxy(std::string(name_) + ": displacement is not finite");
   const AABB fat = fatten(aabb, displacement);
-  if (p.fat.contains(aabb)) {
-    // Still inside; but a fat AABB left stretched by a fast mover that slowed down would pair
-    // with everything around it, so it is refitted once it is far larger than a new one (a
-    // steady mover's boxes keep their size and are not).
+  // The common case first: still inside. A NaN anywhere fails one of these comparisons and
+  // takes the checked path below.
+  if (p.fat.contains(aabb) && aabb.lower.x <= aabb.upper.x && aabb.lower.y <= aabb.upper.y) {
+    // But a fat AABB left stretched by a fast mover that slowed down would pair with
+    // everything around it, so it is refitted once it is far larger than a new one (a steady
+    // mover's boxes keep their size and are not).
     const Vec2 grown = (p.fat.upper - p.fat.lower) - (fat.upper - fat.lower);
     if (std::max(grown.x, grown.y) <= 4.0f * kAabbMargin) return false;
   }
+  checkAABB(aabb, name_);
+  if (!isFinite(displacement))
+    throw InvalidProxy(std::string(name_) + ": displacement is not finite");
   p.fat = fat;
   if (!p.moved) {
     p.moved = true;
@@ -141,10 +143,14 @@ void Quadtree::link(ProxyId id, Tree& tree, int level, int cell) {
   p.next = head;
   if (head != kNullProxy) proxies_[static_cast<std::size_t>(head)].prev = id;
   head = id;
-  if (level < 0)
+  if (level < 0) {
     ++tree.outsideCount;
-  else
-    ++tree.levels[static_cast<std::size_t>(level)].population;
+    return;
+  }
+  Level& lv = tree.levels[static_cast<std::size_t>(level)];
+  ++lv.population;
+  const Vec2 e = p.fat.extents();
+  lv.reach = std::max(lv.reach, std::max(e.x, e.y));
 }
 
 void Quadtree::unlink(ProxyId id) {
@@ -156,10 +162,12 @@ void Quadtree::unlink(ProxyId id) {
     headOf(tree, p.level, p.cell) = p.next;
   if (p.next != kNullProxy) proxies_[static_cast<std::size_t>(p.next)].prev = p.prev;
   p.prev = p.next = kNullProxy;
-  if (p.level < 0)
+  if (p.level < 0) {
     --tree.outsideCount;
-  else
-    --tree.levels[static_cast<std::size_t>(p.level)].population;
+    return;
+  }
+  Level& lv = tree.levels[static_cast<std::size_t>(p.level)];
+  if (--lv.population == 0) lv.reach = 0.0f;
 }
 
 void Quadtree::place(ProxyId id) {
@@ -282,12 +290,15 @@ void Quadtree::validate() const {
         if (p.prev != prev) fail(name + " has a broken back link");
         if (p.level != level || p.cell != cell) fail(name + " records the wrong cell");
         if (lv != nullptr) {
-          // Inside the cell's loose bounds, and as deep as its size allows.
+          // Inside its cell grown by the level's reach (what the queries rely on), which is at
+          // most half a cell (the loose bounds).
           int side = lv->side;
-          Vec2 lo{origin_.x + static_cast<float>(cell % side) * lv->cellSize - 0.5f * lv->cellSize,
-                  origin_.y + static_cast<float>(cell / side) * lv->cellSize - 0.5f * lv->cellSize};
-          AABB loose{lo, {lo.x + 2.0f * lv->cellSize, lo.y + 2.0f * lv->cellSize}};
-          if (!loose.contains(p.fat)) fail(name + " sticks out of its cell's loose bounds");
+          const float grow = lv->queryMargin();
+          Vec2 lo{origin_.x + static_cast<float>(cell % side) * lv->cellSize - grow,
+                  origin_.y + static_cast<float>(cell / side) * lv->cellSize - grow};
+          AABB grown{lo, {lo.x + lv->cellSize + 2.0f * grow, lo.y + lv->cellSize + 2.0f * grow}};
+          if (!grown.contains(p.fat)) fail(name + " sticks out of its cell by more than the reach");
+          if (lv->reach > 0.5f * lv->cellSize) fail(name + " is too large for its level");
         }
         prev = id;
       }

@@ -89,20 +89,25 @@ struct ProxyDef {
   std::uint64_t userData = 0;
 };
 
-// One proxy's storage, shared by both implementations.
-struct ProxyData {
+// One proxy's storage, shared by both implementations. What the query loops read (the fat
+// AABB, the next link, the filter and the flags) fills the first 32 bytes, and a proxy never
+// straddles a cache line.
+struct alignas(64) ProxyData {
   AABB fat;
+  ProxyId next = kNullProxy;  // next proxy in the same cell (Quadtree)
   ProxyFilter filter;
-  std::uint64_t userData = 0;
   bool isStatic = false;
   bool alive = false;
   bool moved = false;  // created or re-inserted since the last updatePairs
-  // Quadtree placement: level, cell, and links in the cell's list (-1: none). level -1 means
-  // the outside list.
+  // Quadtree placement: level, cell and the link back in the cell's list (-1: none). level -1
+  // means the outside list.
+  ProxyId prev = kNullProxy;
   std::int32_t level = 0;
   std::int32_t cell = 0;
-  ProxyId prev = kNullProxy, next = kNullProxy;
+  std::uint64_t userData = 0;
 };
+
+static_assert(sizeof(ProxyData) == 64);
 
 // A hit of a closest-hit or all-hits cast: the proxy and what the exact test reported.
 struct ProxyHit {
@@ -169,7 +174,9 @@ class Quadtree : public ProxyStore {
   static constexpr int kAutoDepth = -1;
   static constexpr float kFinestCell = 1.0f;
   static constexpr int kMaxDepth = 10;  // 2^20 cells on the finest level at most
-  // Below this many proxies every query is a loop over the proxies (measured crossover).
+  // Below this many proxies pair updates and queries loop over the proxies instead of the
+  // cells. Measured (tests/bench/broadphase_bench, "crossover" rows, medians of 5): the tree's
+  // pair update and AABB queries win from 40 to 48 proxies, its 50 m ray casts from 56 to 64.
   static constexpr int kBruteForceBelow = 48;
 
   // worldBounds: the region most proxies live in (the level's bounds); it is made square.
@@ -208,6 +215,8 @@ class Quadtree : public ProxyStore {
   void validate() const;
 
   int maxDepth() const { return maxDepth_; }
+  // Overrides kBruteForceBelow (0: always the tree). For measuring the crossover.
+  void setBruteForceBelow(int count) { bruteBelow_ = count; }
 
  private:
   struct Level {
@@ -215,6 +224,14 @@ class Quadtree : public ProxyStore {
     int side = 0;                // cells per row
     std::vector<ProxyId> heads;  // first proxy of each cell
     int population = 0;          // proxies on this level
+    // The largest half-extent of a proxy placed here since the level was last empty: no proxy
+    // sticks out of its cell by more. At most half a cell (the loose bound), often much less
+    // (movers a little too large for the level below), and queries grow cells by this instead
+    // of half a cell.
+    float reach = 0.0f;
+    // The reach plus a hair: placement rounds the proxy's centre, and a proxy an ulp outside
+    // its cell's grown bounds must still be found.
+    float queryMargin() const { return reach + 1e-4f * cellSize; }
   };
   struct Tree {
     std::vector<Level> levels;
@@ -231,11 +248,12 @@ class Quadtree : public ProxyStore {
   const Tree& treeOf(const ProxyData& p) const { return p.isStatic ? static_ : moving_; }
   template <class Visit>
   bool queryTree(const Tree& tree, const AABB& box, Visit& visit) const;
-  bool small() const { return count_ < kBruteForceBelow; }
+  bool small() const { return count_ < bruteBelow_; }
 
   Vec2 origin_{};
   float size_ = 0.0f;
   int maxDepth_ = 0;
+  int bruteBelow_ = kBruteForceBelow;
   Tree static_, moving_;
 };
 
@@ -360,11 +378,9 @@ bool Quadtree::queryTree(const Tree& tree, const AABB& box, Visit& visit) const 
   for (int l = 0; l < static_cast<int>(tree.levels.size()); ++l) {
     const Level& level = tree.levels[l];
     if (level.population == 0) continue;
-    // Cells whose loose bounds (the cell grown by half a cell) overlap the box.
+    // Cells whose bounds grown by the level's reach overlap the box.
     const float inv = 1.0f / level.cellSize;
-    // A hair over half a cell: placement rounds the proxy's centre, and a proxy an ulp outside
-    // its loose bounds must still be found.
-    const float half = 0.5001f * level.cellSize;
+    const float half = level.queryMargin();
     auto index = [&](float v) {
       float f = std::floor(v * inv);
       return f < 0.0f                              ? 0
@@ -401,8 +417,9 @@ void Quadtree::queryAABB(const AABB& box, ProxyFilter filter, Visit&& visit) con
 }
 
 // The cells of one level that a cast can reach, in the order it reaches them. A proxy in cell
-// X (in cell units along one axis) lies within [X - 1/2, X + 3/2]; grown by the cast's radius
-// that is [X - h, X + 1 + h] with h = 1/2 + radius / cellSize. The cast's point a(t) can touch
+// X (in cell units along one axis) lies within [X - reach, X + 1 + reach] (reach <= 1/2, see
+// Level); grown by the cast's radius that is [X - h, X + 1 + h] with h = (reach + radius) /
+// cellSize. The cast's point a(t) can touch
 // it exactly when X is in the window [a - 1 - h, a + h], so along each axis a window of cells
 // slides with the cast: a cell enters when the window's leading edge passes it and leaves when
 // the trailing edge does. A cell (X, Y) is visited once, when the later of its column and row
@@ -420,9 +437,8 @@ class Quadtree::CellWalk {
     const Level& lv = tree.levels[static_cast<std::size_t>(level)];
     side_ = lv.side;
     const float inv = 1.0f / lv.cellSize;
-    // A thousandth of a cell of slack over the exact half: rounding in the cell coordinates
-    // must never drop a cell.
-    h_ = 0.501f + radius * inv;
+    // A thousandth of a cell of slack: rounding in the cell coordinates must never drop a cell.
+    h_ = (lv.queryMargin() + radius) * inv + 1e-3f;
     const Vec2 o = (in.origin - qt.origin_) * inv, d = in.translation * inv;
     // The part of the cast that can touch any cell: a in [-h, side + h] on both axes.
     const float hi = static_cast<float>(side_) + h_;

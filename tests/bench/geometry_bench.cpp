@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/ratio_table.h"
 #include "physics/collide.h"
 #include "physics/raycast.h"
 #include "physics/toi.h"
@@ -209,74 +210,8 @@ void registerAll() {
   }
 }
 
-// Collects the per-item times and prints the ratio table after the usual console output.
-class RatioReporter : public benchmark::ConsoleReporter {
- public:
-  void ReportRuns(const std::vector<Run>& runs) override {
-    ConsoleReporter::ReportRuns(runs);
-    for (const Run& r : runs) {
-      if (r.run_type != Run::RT_Iteration && r.aggregate_name != "median") continue;
-      std::string name = r.run_name.function_name;
-      size_t slash = name.rfind('/');
-      std::string key = name.substr(0, slash), engine = name.substr(slash + 1);
-      double ns = r.GetAdjustedCPUTime() * 1e9 / static_cast<double>(kCases);
-      if (r.time_unit == benchmark::kNanosecond) ns = r.GetAdjustedCPUTime() / kCases;
-      if (r.time_unit == benchmark::kMicrosecond) ns = r.GetAdjustedCPUTime() * 1e3 / kCases;
-      if (r.time_unit == benchmark::kMillisecond) ns = r.GetAdjustedCPUTime() * 1e6 / kCases;
-      (engine == "ours" ? ours_ : box2d_)[key] = ns;
-      order_.push_back(key);
-    }
-  }
-
-  std::string table() const {
-    std::string out =
-        "| query | pair | ours ns | Box2D 2.4.1 ns | speed-up |\n|---|---|---:|---:|---:|\n";
-    std::map<std::string, bool> seen;
-    for (const std::string& key : order_) {
-      if (seen[key] || !ours_.count(key) || !box2d_.count(key)) continue;
-      seen[key] = true;
-      size_t slash = key.find('/');
-      char line[256];
-      std::snprintf(line, sizeof line, "| %s | %s | %.1f | %.1f | %.2fx |\n",
-                    key.substr(0, slash).c_str(), key.substr(slash + 1).c_str(), ours_.at(key),
-                    box2d_.at(key), box2d_.at(key) / ours_.at(key));
-      out += line;
-    }
-    return out;
-  }
-
- private:
-  std::map<std::string, double> ours_, box2d_;
-  std::vector<std::string> order_;
-};
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string tablePath;
-  std::vector<char*> args;
-  for (int i = 0; i < argc; ++i) {
-    if (std::strncmp(argv[i], "--table=", 8) == 0)
-      tablePath = argv[i] + 8;
-    else
-      args.push_back(argv[i]);
-  }
-  int n = static_cast<int>(args.size());
-  benchmark::Initialize(&n, args.data());
-  registerAll();
-  RatioReporter reporter;
-  benchmark::RunSpecifiedBenchmarks(&reporter);
-  std::string table = reporter.table();
-  std::printf("\n%s", table.c_str());
-  if (!tablePath.empty()) {
-    FILE* f = std::fopen(tablePath.c_str(), "w");
-    if (f == nullptr) {
-      std::fprintf(stderr, "geometry_bench: cannot write %s\n", tablePath.c_str());
-      return 1;
-    }
-    std::fputs(table.c_str(), f);
-    std::fclose(f);
-  }
-  benchmark::Shutdown();
-  return 0;
+  return rc::bench::runWithRatioTable(argc, argv, "geometry_bench", registerAll);
 }

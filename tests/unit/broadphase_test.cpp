@@ -257,8 +257,7 @@ TEST(Broadphase, ParityMixedSizes) {
 TEST(Broadphase, ParityOutsideTheWorld) {
   runScene(Layout::outside, 5, "outside");
 }
-// Few proxies: the quadtree answers by brute force below kBruteForceBelow, then by the tree as
-// the churn adds more.
+// Few proxies: below kBruteForceBelow the quadtree answers by brute force.
 TEST(Broadphase, ParitySmallScenes) {
   static_assert(rc::Quadtree::kBruteForceBelow > 10);
   runScene(Layout::uniform, 7, "small uniform", 10);

@@ -1,0 +1,412 @@
+// The broadphase race: our loose quadtree (physics/broadphase.h) against Box2D 2.4.1's
+// b2BroadPhase / b2DynamicTree doing the same work on the same seeded scenes, in the same run.
+// Not part of ctest; run
+//   ./build/release/tests/broadphase_bench [--benchmark_filter=...] [--table=FILE.md]
+//
+// Scenes (the issue's): circles of radius 0.5 m, one per 8 m^2, in a square arena walled by
+// four static boxes (200 m square for 5,000 circles; the side grows with N).
+//   pairs/N     one step of pair update at 60 Hz with every circle moving at 5 m/s (bouncing
+//               off the walls): every proxy moved with its displacement, then the new pairs
+//               collected (b2BroadPhase::UpdatePairs; our updatePairs). Time per step, averaged
+//               over one simulated second from the same start.
+//   raycast     10,000 closest-hit casts of 50 m among 1,000 (and 65,536) circles, from points
+//               outside every circle, each engine with its own exact circle ray cast in the
+//               callback. Time per cast.
+//   query       10,000 AABB queries of 5 m boxes, counting the proxies found. Time per query.
+//   crossover   our quadtree (never falling back) against our brute force on small scenes:
+//               pair update per step, 50 m ray casts, 5 m AABB queries. Where the tree starts
+//               to pay (Quadtree::kBruteForceBelow).
+// Counters report what each engine found (pairs per step, hits, proxies per query), so that a
+// reader can see the work was the same.
+#include <benchmark/benchmark.h>
+#include <box2d/b2_broad_phase.h>
+#include <box2d/b2_circle_shape.h>
+#include <box2d/b2_dynamic_tree.h>
+
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bench/ratio_table.h"
+#include "physics/broadphase.h"
+#include "physics/random.h"
+
+namespace {
+
+using rc::AABB;
+using rc::Vec2;
+
+constexpr float kRadius = 0.5f;
+constexpr float kSpeed = 5.0f;
+constexpr float kDt = 1.0f / 60.0f;
+constexpr int kSteps = 60;
+
+AABB circleBox(Vec2 c) {
+  return {{c.x - kRadius, c.y - kRadius}, {c.x + kRadius, c.y + kRadius}};
+}
+b2AABB toB2(const AABB& box) {
+  b2AABB b;
+  b.lowerBound.Set(box.lower.x, box.lower.y);
+  b.upperBound.Set(box.upper.x, box.upper.y);
+  return b;
+}
+
+// The arena and one simulated second of motion, precomputed so that both engines see exactly
+// the same positions and neither pays for the integration.
+struct Arena {
+  float side = 0;
+  std::vector<AABB> walls;
+  std::vector<std::vector<Vec2>> positions;  // [step][circle], step 0 the start
+};
+
+Arena makeArena(int n, std::uint64_t seed, int steps) {
+  Arena a;
+  a.side = std::sqrt(8.0f * static_cast<float>(n));
+  const float s = a.side;
+  a.walls = {
+      {{-1, -1}, {0, s + 1}}, {{s, -1}, {s + 1, s + 1}}, {{0, -1}, {s, 0}}, {{0, s}, {s, s + 1}}};
+  rc::Random rng(seed);
+  std::vector<Vec2> p(static_cast<std::size_t>(n)), v(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    p[static_cast<std::size_t>(i)] = rng.inBox({kRadius, kRadius}, {s - kRadius, s - kRadius});
+    const float angle = rng.uniform(0.0f, 6.2831853f);
+    v[static_cast<std::size_t>(i)] = kSpeed * Vec2{std::cos(angle), std::sin(angle)};
+  }
+  a.positions.push_back(p);
+  for (int step = 0; step < steps; ++step) {
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      p[i] += kDt * v[i];
+      // Bounce off the walls.
+      if (p[i].x < kRadius || p[i].x > s - kRadius) v[i].x = -v[i].x;
+      if (p[i].y < kRadius || p[i].y > s - kRadius) v[i].y = -v[i].y;
+      p[i] = rc::max(Vec2{kRadius, kRadius}, rc::min(Vec2{s - kRadius, s - kRadius}, p[i]));
+    }
+    a.positions.push_back(p);
+  }
+  return a;
+}
+
+// ------------------------------------------------------------------------------- pair update
+
+// Our pair update on either broadphase; make() builds an empty one.
+template <class Make>
+void pairsOurs(benchmark::State& state, const Arena& a, Make make) {
+  std::vector<rc::ProxyPair> pairs;
+  double reported = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    auto bp = make();
+    for (const AABB& w : a.walls)
+      bp.createProxy({w, {}, true, 0});
+    std::vector<rc::ProxyId> ids;
+    for (Vec2 p : a.positions[0])
+      ids.push_back(bp.createProxy({circleBox(p), {}, false, 0}));
+    bp.updatePairs(pairs);
+    state.ResumeTiming();
+    for (int step = 1; step <= kSteps; ++step) {
+      const auto& now = a.positions[static_cast<std::size_t>(step)];
+      const auto& before = a.positions[static_cast<std::size_t>(step - 1)];
+      for (std::size_t i = 0; i < ids.size(); ++i)
+        bp.moveProxy(ids[i], circleBox(now[i]), now[i] - before[i]);
+      bp.updatePairs(pairs);
+      reported += static_cast<double>(pairs.size());
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * kSteps);
+  state.counters["new_pairs_per_step"] =
+      reported / static_cast<double>(state.iterations() * kSteps);
+}
+
+// The quadtree over the arena; with alwaysTree it never falls back to brute force.
+auto treeFor(const Arena& a, bool alwaysTree) {
+  return [&a, alwaysTree] {
+    rc::Quadtree tree(AABB{{-1, -1}, {a.side + 1, a.side + 1}});
+    if (alwaysTree) tree.setBruteForceBelow(0);
+    return tree;
+  };
+}
+
+struct PairCollector {
+  std::vector<std::pair<void*, void*>> pairs;
+  void AddPair(void* a, void* b) { pairs.emplace_back(a, b); }
+};
+
+void pairsBox2D(benchmark::State& state, const Arena& a) {
+  PairCollector collector;
+  double reported = 0;
+  // User data: the index plus one (Box2D hands the pointers back, never reads them).
+  auto tag = [](std::size_t i) { return reinterpret_cast<void*>(i + 1); };
+  for (auto _ : state) {
+    state.PauseTiming();
+    b2BroadPhase bp;
+    for (std::size_t w = 0; w < a.walls.size(); ++w)
+      bp.CreateProxy(toB2(a.walls[w]), tag(1000000 + w));
+    std::vector<int32> ids;
+    for (std::size_t i = 0; i < a.positions[0].size(); ++i)
+      ids.push_back(bp.CreateProxy(toB2(circleBox(a.positions[0][i])), tag(i)));
+    bp.UpdatePairs(&collector);
+    state.ResumeTiming();
+    for (int step = 1; step <= kSteps; ++step) {
+      const auto& now = a.positions[static_cast<std::size_t>(step)];
+      const auto& before = a.positions[static_cast<std::size_t>(step - 1)];
+      collector.pairs.clear();
+      for (std::size_t i = 0; i < ids.size(); ++i) {
+        const Vec2 d = now[i] - before[i];
+        bp.MoveProxy(ids[i], toB2(circleBox(now[i])), b2Vec2(d.x, d.y));
+      }
+      bp.UpdatePairs(&collector);
+      reported += static_cast<double>(collector.pairs.size());
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * kSteps);
+  state.counters["new_pairs_per_step"] =
+      reported / static_cast<double>(state.iterations() * kSteps);
+}
+
+// --------------------------------------------------------------------------- ray casts, queries
+
+struct QueryScene {
+  Arena arena;
+  std::vector<rc::RayCastInput> rays;
+  std::vector<AABB> boxes;
+};
+
+QueryScene makeQueryScene(int n, int rays, float rayLength, std::uint64_t seed) {
+  QueryScene q;
+  q.arena = makeArena(n, seed, 0);
+  rc::Random rng(seed + 1);
+  const float s = q.arena.side;
+  // Rays start outside every circle: Box2D reports no hit for a ray that starts inside a
+  // circle and we report one at fraction 0, and the race should be about the same answers.
+  rc::Quadtree index(AABB{{0, 0}, {s, s}});
+  const auto& centres = q.arena.positions[0];
+  for (Vec2 c : centres)
+    index.createProxy({circleBox(c), {}, false, 0});
+  auto insideACircle = [&](Vec2 p) {
+    for (rc::ProxyId id : index.queryPoint(p))
+      if (rc::distanceSquared(p, centres[static_cast<std::size_t>(id)]) <= kRadius * kRadius)
+        return true;
+    return false;
+  };
+  for (int i = 0; i < rays; ++i) {
+    const float angle = rng.uniform(0.0f, 6.2831853f);
+    Vec2 origin = rng.inBox({0, 0}, {s, s});
+    while (insideACircle(origin))
+      origin = rng.inBox({0, 0}, {s, s});
+    q.rays.push_back({origin, rayLength * Vec2{std::cos(angle), std::sin(angle)}, 1.0f});
+    Vec2 c = rng.inBox({0, 0}, {s, s});
+    q.boxes.push_back({c - Vec2{2.5f, 2.5f}, c + Vec2{2.5f, 2.5f}});
+  }
+  return q;
+}
+
+template <class Broadphase>
+void fillOurs(Broadphase& bp, const Arena& a) {
+  for (const AABB& w : a.walls)
+    bp.createProxy({w, {}, true, 0});
+  for (Vec2 p : a.positions[0])
+    bp.createProxy({circleBox(p), {}, false, 0});
+}
+
+// Proxy ids 0..3 are the walls (not hit by the exact test), then the circles in order.
+template <class Broadphase>
+void raysOurs(benchmark::State& state, const QueryScene& q, const Broadphase& bp) {
+  const auto& centres = q.arena.positions[0];
+  const std::size_t walls = q.arena.walls.size();
+  auto exact = [&](rc::ProxyId id, const rc::RayCastInput& in) {
+    if (static_cast<std::size_t>(id) < walls) return rc::CastOutput{};
+    return rc::rayCast(rc::Circle{centres[static_cast<std::size_t>(id) - walls], kRadius}, in);
+  };
+  double hits = 0;
+  for (auto _ : state) {
+    for (const rc::RayCastInput& in : q.rays) {
+      rc::ProxyHit h = rc::castClosest(bp, in, 0.0f, {}, exact);
+      hits += h.out.hit;
+      benchmark::DoNotOptimize(h);
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(q.rays.size()));
+  state.counters["hit_rate"] =
+      hits / static_cast<double>(state.iterations() * static_cast<std::int64_t>(q.rays.size()));
+}
+
+struct Box2DTreeScene {
+  b2DynamicTree tree;
+  std::vector<b2CircleShape> circles;
+  std::vector<int32> ids;
+};
+
+// Box2D's tree with the same proxies; user data points at the circle (null for the walls).
+void fillBox2D(Box2DTreeScene& s, const Arena& a) {
+  s.circles.resize(a.positions[0].size());
+  for (const AABB& w : a.walls)
+    s.tree.CreateProxy(toB2(w), nullptr);
+  for (std::size_t i = 0; i < s.circles.size(); ++i) {
+    s.circles[i].m_p.Set(a.positions[0][i].x, a.positions[0][i].y);
+    s.circles[i].m_radius = kRadius;
+    s.ids.push_back(s.tree.CreateProxy(toB2(circleBox(a.positions[0][i])), &s.circles[i]));
+  }
+}
+
+struct Box2DClosest {
+  const b2DynamicTree* tree;
+  b2Transform identity;
+  float best = 1.0f;
+  bool hit = false;
+  float RayCastCallback(const b2RayCastInput& input, int32 proxyId) {
+    auto* circle = static_cast<const b2CircleShape*>(tree->GetUserData(proxyId));
+    if (circle == nullptr) return input.maxFraction;
+    b2RayCastOutput out;
+    if (!circle->RayCast(&out, input, identity, 0)) return input.maxFraction;
+    hit = true;
+    best = out.fraction;
+    return out.fraction;
+  }
+};
+
+void raysBox2D(benchmark::State& state, const QueryScene& q, const Box2DTreeScene& s) {
+  double hits = 0;
+  for (auto _ : state) {
+    for (const rc::RayCastInput& in : q.rays) {
+      Box2DClosest cb{&s.tree, b2Transform(), 1.0f, false};
+      cb.identity.SetIdentity();
+      b2RayCastInput input;
+      input.p1.Set(in.origin.x, in.origin.y);
+      input.p2.Set(in.origin.x + in.translation.x, in.origin.y + in.translation.y);
+      input.maxFraction = 1.0f;
+      s.tree.RayCast(&cb, input);
+      hits += cb.hit;
+      benchmark::DoNotOptimize(cb.best);
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(q.rays.size()));
+  state.counters["hit_rate"] =
+      hits / static_cast<double>(state.iterations() * static_cast<std::int64_t>(q.rays.size()));
+}
+
+template <class Broadphase>
+void queriesOurs(benchmark::State& state, const QueryScene& q, const Broadphase& tree) {
+  double found = 0;
+  for (auto _ : state) {
+    for (const AABB& box : q.boxes) {
+      int n = 0;
+      tree.queryAABB(box, {}, [&](rc::ProxyId) {
+        ++n;
+        return true;
+      });
+      found += n;
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(q.boxes.size()));
+  state.counters["found_per_query"] =
+      found / static_cast<double>(state.iterations() * static_cast<std::int64_t>(q.boxes.size()));
+}
+
+struct Box2DCounter {
+  int n = 0;
+  bool QueryCallback(int32) {
+    ++n;
+    return true;
+  }
+};
+
+void queriesBox2D(benchmark::State& state, const QueryScene& q, const Box2DTreeScene& s) {
+  double found = 0;
+  for (auto _ : state) {
+    for (const AABB& box : q.boxes) {
+      Box2DCounter cb;
+      s.tree.Query(&cb, toB2(box));
+      found += cb.n;
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(q.boxes.size()));
+  state.counters["found_per_query"] =
+      found / static_cast<double>(state.iterations() * static_cast<std::int64_t>(q.boxes.size()));
+}
+
+// ---------------------------------------------------------------------------------- register
+
+void registerAll() {
+  // Scenes live for the whole run: the benchmarks keep pointers to them.
+  static std::vector<std::unique_ptr<Arena>> arenas;
+  for (int n : {1024, 4096, 16384, 65536}) {
+    arenas.push_back(
+        std::make_unique<Arena>(makeArena(n, 100 + static_cast<std::uint64_t>(n), kSteps)));
+    const Arena* a = arenas.back().get();
+    const std::string name = "pairs/N=" + std::to_string(n);
+    benchmark::RegisterBenchmark((name + "/ours").c_str(), [a](benchmark::State& s) {
+      pairsOurs(s, *a, treeFor(*a, false));
+    })->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark((name + "/box2d").c_str(), [a](benchmark::State& s) {
+      pairsBox2D(s, *a);
+    })->Unit(benchmark::kMicrosecond);
+  }
+
+  static std::vector<std::unique_ptr<QueryScene>> scenes;
+  static std::vector<std::unique_ptr<rc::Quadtree>> trees;
+  static std::vector<std::unique_ptr<Box2DTreeScene>> b2trees;
+  auto addScene = [](int n, int rays, float length) {
+    scenes.push_back(std::make_unique<QueryScene>(
+        makeQueryScene(n, rays, length, 7 + static_cast<std::uint64_t>(n))));
+    const QueryScene* q = scenes.back().get();
+    const float s = q->arena.side;
+    trees.push_back(std::make_unique<rc::Quadtree>(AABB{{-1, -1}, {s + 1, s + 1}}));
+    fillOurs(*trees.back(), q->arena);
+    b2trees.push_back(std::make_unique<Box2DTreeScene>());
+    fillBox2D(*b2trees.back(), q->arena);
+  };
+  for (int n : {1000, 65536}) {
+    addScene(n, 10000, 50.0f);
+    const QueryScene* q = scenes.back().get();
+    const rc::Quadtree* t = trees.back().get();
+    const Box2DTreeScene* b = b2trees.back().get();
+    const std::string among = " among " + std::to_string(n);
+    benchmark::RegisterBenchmark(("raycast/50m" + among + "/ours").c_str(),
+                                 [q, t](benchmark::State& s) { raysOurs(s, *q, *t); });
+    benchmark::RegisterBenchmark(("raycast/50m" + among + "/box2d").c_str(),
+                                 [q, b](benchmark::State& s) { raysBox2D(s, *q, *b); });
+    benchmark::RegisterBenchmark(("query/5m box" + among + "/ours").c_str(),
+                                 [q, t](benchmark::State& s) { queriesOurs(s, *q, *t); });
+    benchmark::RegisterBenchmark(("query/5m box" + among + "/box2d").c_str(),
+                                 [q, b](benchmark::State& s) { queriesBox2D(s, *q, *b); });
+  }
+
+  // Crossover: the quadtree (never falling back) against brute force on small scenes.
+  static std::vector<std::unique_ptr<rc::BruteForce>> brutes;
+  for (int n : {8, 16, 32, 40, 48, 56, 64, 128, 256}) {
+    arenas.push_back(
+        std::make_unique<Arena>(makeArena(n, 200 + static_cast<std::uint64_t>(n), kSteps)));
+    const Arena* a = arenas.back().get();
+    const std::string name = "crossover pairs/N=" + std::to_string(n);
+    benchmark::RegisterBenchmark((name + "/ours").c_str(),
+                                 [a](benchmark::State& s) { pairsOurs(s, *a, treeFor(*a, true)); });
+    benchmark::RegisterBenchmark((name + "/brute").c_str(), [a](benchmark::State& s) {
+      pairsOurs(s, *a, [] { return rc::BruteForce(); });
+    });
+    addScene(n, 1000, 50.0f);
+    const QueryScene* q = scenes.back().get();
+    trees.back()->setBruteForceBelow(0);
+    const rc::Quadtree* t = trees.back().get();
+    brutes.push_back(std::make_unique<rc::BruteForce>());
+    fillOurs(*brutes.back(), q->arena);
+    const rc::BruteForce* bf = brutes.back().get();
+    const std::string rays = "crossover rays/N=" + std::to_string(n);
+    benchmark::RegisterBenchmark((rays + "/ours").c_str(),
+                                 [q, t](benchmark::State& s) { raysOurs(s, *q, *t); });
+    benchmark::RegisterBenchmark((rays + "/brute").c_str(),
+                                 [q, bf](benchmark::State& s) { raysOurs(s, *q, *bf); });
+    const std::string boxes = "crossover query/N=" + std::to_string(n);
+    benchmark::RegisterBenchmark((boxes + "/ours").c_str(),
+                                 [q, t](benchmark::State& s) { queriesOurs(s, *q, *t); });
+    benchmark::RegisterBenchmark((boxes + "/brute").c_str(),
+                                 [q, bf](benchmark::State& s) { queriesOurs(s, *q, *bf); });
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return rc::bench::runWithRatioTable(argc, argv, "broadphase_bench", registerAll);
+}

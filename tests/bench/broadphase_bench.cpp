@@ -23,6 +23,7 @@
 #include <box2d/b2_circle_shape.h>
 #include <box2d/b2_dynamic_tree.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -126,6 +127,35 @@ auto treeFor(const Arena& a, bool alwaysTree) {
     if (alwaysTree) tree.setBruteForceBelow(0);
     return tree;
   };
+}
+
+// The least a linear (Morton) quadtree rebuilt every step must do before it finds a single
+// pair: a Morton key per proxy from its centre, then a sort. Measured beside our whole pair
+// update to see whether that variant could win (see physics/broadphase.h, "Why").
+void mortonSortOnly(benchmark::State& state, const Arena& a) {
+  auto spread = [](std::uint32_t v) {  // 16 bits to the even bits of 32
+    v &= 0xFFFFu;
+    v = (v | (v << 8)) & 0x00FF00FFu;
+    v = (v | (v << 4)) & 0x0F0F0F0Fu;
+    v = (v | (v << 2)) & 0x33333333u;
+    v = (v | (v << 1)) & 0x55555555u;
+    return v;
+  };
+  const float scale = 65535.0f / (a.side + 2.0f);
+  std::vector<std::uint64_t> keys(a.positions[0].size());
+  for (auto _ : state) {
+    for (int step = 1; step <= kSteps; ++step) {
+      const auto& now = a.positions[static_cast<std::size_t>(step)];
+      for (std::size_t i = 0; i < now.size(); ++i) {
+        const auto x = static_cast<std::uint32_t>((now[i].x + 1.0f) * scale);
+        const auto y = static_cast<std::uint32_t>((now[i].y + 1.0f) * scale);
+        keys[i] = (static_cast<std::uint64_t>(spread(x) | (spread(y) << 1)) << 32) | i;
+      }
+      std::sort(keys.begin(), keys.end());
+      benchmark::DoNotOptimize(keys.data());
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * kSteps);
 }
 
 struct PairCollector {
@@ -341,6 +371,13 @@ void registerAll() {
     })->Unit(benchmark::kMicrosecond);
     benchmark::RegisterBenchmark((name + "/box2d").c_str(), [a](benchmark::State& s) {
       pairsBox2D(s, *a);
+    })->Unit(benchmark::kMicrosecond);
+    const std::string variant = "variant: pairs vs Morton keys + sort/N=" + std::to_string(n);
+    benchmark::RegisterBenchmark((variant + "/ours").c_str(), [a](benchmark::State& s) {
+      pairsOurs(s, *a, treeFor(*a, false));
+    })->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark((variant + "/morton sort only").c_str(), [a](benchmark::State& s) {
+      mortonSortOnly(s, *a);
     })->Unit(benchmark::kMicrosecond);
   }
 

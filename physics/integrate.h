@@ -117,21 +117,16 @@ void integrate(Integrator method, std::span<T> q, std::span<T> v, T t, T h, Acce
         qs[i] = q[i] + half * v[i];
         vs[i] = v[i] + half * a[i];
       }
-      accel(std::span<const T>(qs), std::span<const T>(vs), t + half, a);  // k2
-      for (std::size_t i = 0; i < n; ++i) {
-        const T kq = vs[i];
-        dq[i] += T(2) * kq;
-        dv[i] += T(2) * a[i];
-        qs[i] = q[i] + half * kq;
-        vs[i] = v[i] + half * a[i];
-      }
-      accel(std::span<const T>(qs), std::span<const T>(vs), t + half, a);  // k3
-      for (std::size_t i = 0; i < n; ++i) {
-        const T kq = vs[i];
-        dq[i] += T(2) * kq;
-        dv[i] += T(2) * a[i];
-        qs[i] = q[i] + h * kq;
-        vs[i] = v[i] + h * a[i];
+      // k2 and k3, both at t + h/2; each sets up the next stage, at t + h/2 and at t + h.
+      for (const T next : {half, h}) {
+        accel(std::span<const T>(qs), std::span<const T>(vs), t + half, a);
+        for (std::size_t i = 0; i < n; ++i) {
+          const T kq = vs[i];
+          dq[i] += T(2) * kq;
+          dv[i] += T(2) * a[i];
+          qs[i] = q[i] + next * kq;
+          vs[i] = v[i] + next * a[i];
+        }
       }
       accel(std::span<const T>(qs), std::span<const T>(vs), t + h, a);  // k4
       const T sixth = h / T(6);

@@ -9,7 +9,8 @@
 namespace rc {
 namespace {
 
-using ManifoldFn = Manifold (*)(const Shape&, const Transform&, const Shape&, const Transform&);
+using ManifoldFn = Manifold (*)(const Shape&, const Transform&, const Shape&, const Transform&,
+                                float margin);
 using OverlapFn = bool (*)(const Shape&, const Transform&, const Shape&, const Transform&);
 
 struct Entry {
@@ -22,26 +23,33 @@ constexpr int index(ShapeType t) {
   return static_cast<int>(t);
 }
 
-Manifold circles(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb) {
-  return collideCircles(a.circle, xa, b.circle, xb);
+Manifold circles(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+                 float margin) {
+  return collideCircles(a.circle, xa, b.circle, xb, margin);
 }
-Manifold capsuleCircle(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb) {
-  return collideCapsuleAndCircle(a.capsule, xa, b.circle, xb);
+Manifold capsuleCircle(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+                       float margin) {
+  return collideCapsuleAndCircle(a.capsule, xa, b.circle, xb, margin);
 }
-Manifold boxCircle(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb) {
-  return collideBoxAndCircle(a.box, xa, b.circle, xb);
+Manifold boxCircle(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+                   float margin) {
+  return collideBoxAndCircle(a.box, xa, b.circle, xb, margin);
 }
-Manifold polygonCircle(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb) {
-  return collidePolygonAndCircle(a.polygon, xa, b.circle, xb);
+Manifold polygonCircle(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+                       float margin) {
+  return collidePolygonAndCircle(a.polygon, xa, b.circle, xb, margin);
 }
-Manifold segmentCircle(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb) {
-  return collideSegmentAndCircle(a.segment, xa, b.circle, xb);
+Manifold segmentCircle(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+                       float margin) {
+  return collideSegmentAndCircle(a.segment, xa, b.circle, xb, margin);
 }
-Manifold boxes(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb) {
-  return collideBoxes(a.box, xa, b.box, xb);
+Manifold boxes(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+               float margin) {
+  return collideBoxes(a.box, xa, b.box, xb, margin);
 }
-Manifold chain(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb) {
-  return collideChainSegment(a.chainSegment, xa, b, xb);
+Manifold chain(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+               float margin) {
+  return collideChainSegment(a.chainSegment, xa, b, xb, margin);
 }
 
 bool overlapCircles(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb) {
@@ -236,11 +244,12 @@ constexpr const Table& table() {
 
 }  // namespace
 
-Manifold collide(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB) {
+Manifold collide(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB,
+                 float margin) {
   const Entry& e = table().e[index(a.type)][index(b.type)];
   if (e.manifold == nullptr) unsupported("collide", a.type, b.type);
-  if (!e.flip) return e.manifold(a, xfA, b, xfB);
-  Manifold m = e.manifold(b, xfB, a, xfA);
+  if (!e.flip) return e.manifold(a, xfA, b, xfB, margin);
+  Manifold m = e.manifold(b, xfB, a, xfA, margin);
   m.normal = -m.normal;
   for (int i = 0; i < m.pointCount; ++i)
     std::swap(m.points[i].anchorA, m.points[i].anchorB);

@@ -16,8 +16,10 @@ class UnsupportedPair : public std::logic_error {
   using std::logic_error::logic_error;
 };
 
-// Contact manifold of any supported pair; normal from A to B.
-Manifold collide(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB);
+// Contact manifold of any supported pair; normal from A to B. Points are reported while the
+// shapes are within `margin` (see manifold.h).
+Manifold collide(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB,
+                 float margin = kSpeculativeDistance);
 
 // Do the shapes overlap (touching counts)? Cheap bounds first: the bounding circles are compared
 // before any exact test that needs more than a few operations.

@@ -116,7 +116,8 @@ Manifold toWorld(const Local& m, const Transform& xfA, const Transform& xfB) {
 
 // Point c with radius rc against the convex core (v, n, count) rounded by radius (same frame).
 // Normal from the hull towards the point.
-Local pointVsCore(const Vec2* v, const Vec2* n, int count, float radius, Vec2 c, float rc) {
+Local pointVsCore(const Vec2* v, const Vec2* n, int count, float radius, Vec2 c, float rc,
+                  float margin) {
   struct {
     const Vec2* v;
     const Vec2* n;
@@ -134,7 +135,7 @@ Local pointVsCore(const Vec2* v, const Vec2* n, int count, float radius, Vec2 c,
   } else {
     int best = 0;
     float maxSep = -1e30f;
-    const float reach = h.radius + rc + kSpeculativeDistance;
+    const float reach = h.radius + rc + margin;
 #pragma GCC unroll 1  // see support() in distance.cpp: GCC -O3 peeling costs more than it saves
     for (int i = 0; i < h.count; ++i) {
       float s = dot(h.n[i], c - h.v[i]);
@@ -171,14 +172,14 @@ Local pointVsCore(const Vec2* v, const Vec2* n, int count, float radius, Vec2 c,
     }
   }
   float sep = dist - h.radius - rc;
-  if (sep > kSpeculativeDistance) return m;
+  if (sep > margin) return m;
   m.normal = normal;
   m.add(mulSub(c, 0.5f * (rc + dist - h.radius), normal), sep, id);
   return m;
 }
 
-Local hullVsPoint(const Hull& h, Vec2 c, float rc) {
-  return pointVsCore(h.v, h.n, h.count, h.radius, c, rc);
+Local hullVsPoint(const Hull& h, Vec2 c, float rc, float margin) {
+  return pointVsCore(h.v, h.n, h.count, h.radius, c, rc, margin);
 }
 
 // Largest separation of b from a over a's edge normals, and the edge that gives it. Stops at
@@ -201,17 +202,17 @@ float maxSeparation(const Hull& a, const Hull& b, float enough, int* edge) {
 }
 
 // Both hulls in the same frame; normal from a to b.
-Local collideLocal(const Hull& a, const Hull& b) {
-  if (b.count == 1) return hullVsPoint(a, b.v[0], b.radius);
+Local collideLocal(const Hull& a, const Hull& b, float margin) {
+  if (b.count == 1) return hullVsPoint(a, b.v[0], b.radius, margin);
   if (a.count == 1) {
-    Local m = hullVsPoint(b, a.v[0], a.radius);
+    Local m = hullVsPoint(b, a.v[0], a.radius, margin);
     m.normal = -m.normal;
     return m;
   }
   Local m;
   const float radii = a.radius + b.radius;
   int edgeA, edgeB;
-  const float reach = kSpeculativeDistance + radii;
+  const float reach = margin + radii;
   float sepA = maxSeparation(a, b, reach, &edgeA);
   if (sepA > reach) return m;
   float sepB = maxSeparation(b, a, reach, &edgeB);
@@ -244,7 +245,7 @@ Local collideLocal(const Hull& a, const Hull& b) {
   auto vertexContact = [&]() {
     const DistanceOutput& d = coreDistance();
     float s = d.distance - radii;
-    if (s > kSpeculativeDistance) return m;
+    if (s > margin) return m;
     m.normal = d.normal;
     std::uint16_t id =
         static_cast<std::uint16_t>(0x4000 | (cache.indexA[0] << 4) | cache.indexB[0]);
@@ -300,7 +301,7 @@ Local collideLocal(const Hull& a, const Hull& b) {
   for (int k = 0; k < 2; ++k) {
     float core = dot(c[k] - v1, n);
     float s = core - radii;
-    if (s > kSpeculativeDistance) continue;
+    if (s > margin) continue;
     Vec2 p = mulAdd(c[k], 0.5f * (refR - incR - core), n);
     std::uint16_t id =
         static_cast<std::uint16_t>((flip ? 0x8000 : 0) | (i1 << 8) | (wid[k] << 4) | k);
@@ -322,12 +323,12 @@ Local collideLocal(const Hull& a, const Hull& b) {
 }  // namespace
 
 Manifold collideCircles(const Circle& a, const Transform& xfA, const Circle& b,
-                        const Transform& xfB) {
+                        const Transform& xfB, float margin) {
   // In the world frame: two point transforms, no relative transform to build.
   Vec2 offsetA = rotate(xfA.q, a.center), offsetB = rotate(xfB.q, b.center);
   Vec2 d = (xfB.p - xfA.p) + (offsetB - offsetA);
   float dist2 = lengthSquared(d);
-  float reach = a.radius + b.radius + kSpeculativeDistance;
+  float reach = a.radius + b.radius + margin;
   if (dist2 > reach * reach) return Manifold{};
   float dist = std::sqrt(dist2);
   float sep = dist - a.radius - b.radius;
@@ -344,18 +345,19 @@ Manifold collideCircles(const Circle& a, const Transform& xfA, const Circle& b,
 }
 
 Manifold collidePolygonAndCircle(const Polygon& a, const Transform& xfA, const Circle& b,
-                                 const Transform& xfB) {
+                                 const Transform& xfB, float margin) {
   Vec2 c = invApply(xfA, apply(xfB, b.center));
-  return toWorld(pointVsCore(a.vertices, a.normals, a.count, a.radius, c, b.radius), xfA, xfB);
+  return toWorld(pointVsCore(a.vertices, a.normals, a.count, a.radius, c, b.radius, margin), xfA,
+                 xfB);
 }
 
 Manifold collideSegmentAndCircle(const Segment& a, const Transform& xfA, const Circle& b,
-                                 const Transform& xfB) {
-  return collideCapsuleAndCircle(Capsule{a.point1, a.point2, 0.0f}, xfA, b, xfB);
+                                 const Transform& xfB, float margin) {
+  return collideCapsuleAndCircle(Capsule{a.point1, a.point2, 0.0f}, xfA, b, xfB, margin);
 }
 
 Manifold collideCapsuleAndCircle(const Capsule& a, const Transform& xfA, const Circle& b,
-                                 const Transform& xfB) {
+                                 const Transform& xfB, float margin) {
   Vec2 c = invApply(xfA, apply(xfB, b.center));
   Vec2 e = a.center2 - a.center1;
   float u = dot(c - a.center1, e);
@@ -381,13 +383,13 @@ Manifold collideCapsuleAndCircle(const Capsule& a, const Transform& xfA, const C
     id = u <= 0.0f ? 1 : 2;
   }
   float sep = dist - a.radius - b.radius;
-  if (sep > kSpeculativeDistance) return Manifold{};
+  if (sep > margin) return Manifold{};
   m.add(mulAdd(closest, a.radius + 0.5f * sep, m.normal), sep, id);
   return toWorld(m, xfA, xfB);
 }
 
 Manifold collideBoxAndCircle(const Box& a, const Transform& xfA, const Circle& b,
-                             const Transform& xfB) {
+                             const Transform& xfB, float margin) {
   Vec2 p = invApply(xfA, apply(xfB, b.center)) - a.center;
   Vec2 h = a.halfExtents;
   Local m;
@@ -415,15 +417,16 @@ Manifold collideBoxAndCircle(const Box& a, const Transform& xfA, const Circle& b
                                     (p.y > h.y ? 4 : (p.y < -h.y ? 8 : 0)));
   }
   float sep = dist - b.radius;
-  if (sep > kSpeculativeDistance) return Manifold{};
+  if (sep > margin) return Manifold{};
   m.normal = normal;
   m.add(a.center + mulSub(p, 0.5f * (b.radius + dist), normal), sep, id);
   return toWorld(m, xfA, xfB);
 }
 
-Manifold collideBoxes(const Box& a, const Transform& xfA, const Box& b, const Transform& xfB) {
+Manifold collideBoxes(const Box& a, const Transform& xfA, const Box& b, const Transform& xfB,
+                      float margin) {
   Transform rel = invMul(xfA, xfB);
-  if (!rel.q.isIdentity()) return collideHulls(Shape(a), xfA, Shape(b), xfB);
+  if (!rel.q.isIdentity()) return collideHulls(Shape(a), xfA, Shape(b), xfB, margin);
   // Aligned boxes: the separating axis is x or y, and the contact points are the ends of the
   // overlap of the two boxes' extents along the other axis.
   Vec2 cA = a.center, cB = rel.p + b.center;
@@ -431,10 +434,10 @@ Manifold collideBoxes(const Box& a, const Transform& xfA, const Box& b, const Tr
   Vec2 d = cB - cA;
   float sepX = std::fabs(d.x) - hA.x - hB.x;
   float sepY = std::fabs(d.y) - hA.y - hB.y;
-  if (sepX > kSpeculativeDistance || sepY > kSpeculativeDistance) return Manifold{};
+  if (sepX > margin || sepY > margin) return Manifold{};
   if (sepX > 0.0f && sepY > 0.0f) {
     // Corner to corner: the closest features are two vertices.
-    return collideHulls(Shape(a), xfA, Shape(b), xfB);
+    return collideHulls(Shape(a), xfA, Shape(b), xfB, margin);
   }
   Local m;
   int axis = sepX > sepY ? 0 : 1;
@@ -457,15 +460,16 @@ Manifold collideBoxes(const Box& a, const Transform& xfA, const Box& b, const Tr
   return toWorld(m, xfA, xfB);
 }
 
-Manifold collideHulls(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB) {
+Manifold collideHulls(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB,
+                      float margin) {
   Hull ha, hb;
   makeHull(a, Transform{}, &ha);
   makeHull(b, invMul(xfA, xfB), &hb);
-  return toWorld(collideLocal(ha, hb), xfA, xfB);
+  return toWorld(collideLocal(ha, hb, margin), xfA, xfB);
 }
 
 Manifold collideChainSegment(const ChainSegment& a, const Transform& xfA, const Shape& b,
-                             const Transform& xfB) {
+                             const Transform& xfB, float margin) {
   Hull hb;
   makeHull(b, invMul(xfA, xfB), &hb);
   Vec2 p1 = a.segment.point1, p2 = a.segment.point2, g1 = a.ghost1, g2 = a.ghost2;
@@ -479,7 +483,7 @@ Manifold collideChainSegment(const ChainSegment& a, const Transform& xfA, const 
   }
   Hull ha;
   setTwoPointHull(&ha, p1, p2, 0.0f);
-  Local m = collideLocal(ha, hb);
+  Local m = collideLocal(ha, hb, margin);
   if (m.count == 0) return Manifold{};
   Vec2 e = p2 - p1;
   float tangential = dot(m.normal, normalize(e));

@@ -3,8 +3,9 @@
 // A manifold describes how two shapes touch: one normal (from A to B) and up to two points, each
 // with its separation along the normal (negative when penetrating) and a feature id that stays
 // the same while the same features touch, so the solver can warm start from last step's
-// impulses. Points are reported while the shapes are within kSpeculativeDistance, so a solver
-// can stop an approaching body before it penetrates.
+// impulses. Points are reported while the shapes are within `margin` (kSpeculativeDistance by
+// default; a world passes more for bodies that approach faster), so a solver can stop an
+// approaching body before it penetrates.
 //
 // How each pair is solved (collide.cpp registers them in a table):
 //   circle-circle, circle-capsule: closest points in closed form;
@@ -42,21 +43,23 @@ struct Manifold {
 };
 
 Manifold collideCircles(const Circle& a, const Transform& xfA, const Circle& b,
-                        const Transform& xfB);
+                        const Transform& xfB, float margin = kSpeculativeDistance);
 Manifold collideCapsuleAndCircle(const Capsule& a, const Transform& xfA, const Circle& b,
-                                 const Transform& xfB);
+                                 const Transform& xfB, float margin = kSpeculativeDistance);
 Manifold collidePolygonAndCircle(const Polygon& a, const Transform& xfA, const Circle& b,
-                                 const Transform& xfB);
+                                 const Transform& xfB, float margin = kSpeculativeDistance);
 Manifold collideSegmentAndCircle(const Segment& a, const Transform& xfA, const Circle& b,
-                                 const Transform& xfB);
+                                 const Transform& xfB, float margin = kSpeculativeDistance);
 Manifold collideBoxAndCircle(const Box& a, const Transform& xfA, const Circle& b,
-                             const Transform& xfB);
+                             const Transform& xfB, float margin = kSpeculativeDistance);
 // Falls back to the polygon path when the two boxes are not aligned.
-Manifold collideBoxes(const Box& a, const Transform& xfA, const Box& b, const Transform& xfB);
+Manifold collideBoxes(const Box& a, const Transform& xfA, const Box& b, const Transform& xfB,
+                      float margin = kSpeculativeDistance);
 // General path: any two solid or segment shapes as rounded hulls.
-Manifold collideHulls(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB);
+Manifold collideHulls(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB,
+                      float margin = kSpeculativeDistance);
 // A chain link against any solid shape, ghost-free.
 Manifold collideChainSegment(const ChainSegment& a, const Transform& xfA, const Shape& b,
-                             const Transform& xfB);
+                             const Transform& xfB, float margin = kSpeculativeDistance);
 
 }  // namespace rc

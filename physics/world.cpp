@@ -1,0 +1,785 @@
+#include "physics/world.h"
+
+#include <algorithm>
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+#include "physics/collide.h"
+
+namespace rc {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double millisecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+[[noreturn]] void fail(const char* what, const char* field, const std::string& why) {
+  throw InvalidDefinition(std::string(what) + ": " + field + " " + why);
+}
+void requireFinite(const char* what, const char* field, float v) {
+  if (!std::isfinite(v)) fail(what, field, "is not finite (" + std::to_string(v) + ")");
+}
+void requireFinite(const char* what, const char* field, Vec2 v) {
+  if (!isFinite(v))
+    fail(what, field, "is not finite (" + std::to_string(v.x) + ", " + std::to_string(v.y) + ")");
+}
+void requireNonNegative(const char* what, const char* field, float v) {
+  requireFinite(what, field, v);
+  if (v < 0.0f) fail(what, field, "is " + std::to_string(v) + " (must be >= 0)");
+}
+
+std::uint64_t pairKey(std::int32_t a, std::int32_t b) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
+         static_cast<std::uint32_t>(b);
+}
+
+// Friction and restitution of a pair, as Box2D mixes them: geometric mean, maximum.
+float mixFriction(float a, float b) {
+  return std::sqrt(a * b);
+}
+float mixRestitution(float a, float b) {
+  return std::max(a, b);
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------------------------ ForceStage
+
+int ForceStage::slot(BodyId id) const {
+  return world_.body(id).slot;
+}
+Vec2 ForceStage::center(BodyId id) const {
+  const int s = slot(id);
+  if (s < 0) return world_.center(world_.body(id));
+  return {q_[3 * static_cast<std::size_t>(s)], q_[3 * static_cast<std::size_t>(s) + 1]};
+}
+float ForceStage::angle(BodyId id) const {
+  const int s = slot(id);
+  return s < 0 ? world_.body(id).angle : q_[3 * static_cast<std::size_t>(s) + 2];
+}
+Vec2 ForceStage::velocity(BodyId id) const {
+  const int s = slot(id);
+  if (s < 0) return {};
+  return {v_[3 * static_cast<std::size_t>(s)], v_[3 * static_cast<std::size_t>(s) + 1]};
+}
+float ForceStage::angularVelocity(BodyId id) const {
+  const int s = slot(id);
+  return s < 0 ? 0.0f : v_[3 * static_cast<std::size_t>(s) + 2];
+}
+void ForceStage::addForce(BodyId id, Vec2 force) {
+  const World::Body& b = world_.body(id);
+  if (b.type != BodyType::dynamicBody) return;
+  const auto i = 3 * static_cast<std::size_t>(b.slot);
+  a_[i] += b.invMass * force.x;
+  a_[i + 1] += b.invMass * force.y;
+}
+void ForceStage::addTorque(BodyId id, float torque) {
+  const World::Body& b = world_.body(id);
+  if (b.type != BodyType::dynamicBody) return;
+  a_[3 * static_cast<std::size_t>(b.slot) + 2] += b.invInertia * torque;
+}
+void ForceStage::addForceAt(BodyId id, Vec2 force, Vec2 worldPoint) {
+  addForce(id, force);
+  addTorque(id, cross(worldPoint - center(id), force));
+}
+
+// ----------------------------------------------------------------------------------- World
+
+World::World(const WorldDef& def) : def_(def), broadphase_(def.bounds) {
+  requireFinite("world", "gravity", def.gravity);
+  if (def.substeps < 1 || def.substeps > 64)
+    fail("world", "substeps", "is " + std::to_string(def.substeps) + " (must be 1 to 64)");
+  requireNonNegative("world", "restitutionThreshold", def.restitutionThreshold);
+  requireNonNegative("world", "contactHertz", def.contactHertz);
+  requireNonNegative("world", "contactDampingRatio", def.contactDampingRatio);
+  requireNonNegative("world", "maxPushoutSpeed", def.maxPushoutSpeed);
+}
+
+std::size_t World::checked(BodyId id) const {
+  if (id.index < 0 || static_cast<std::size_t>(id.index) >= bodies_.size() ||
+      !bodies_[static_cast<std::size_t>(id.index)].alive ||
+      bodies_[static_cast<std::size_t>(id.index)].generation != id.generation)
+    throw std::invalid_argument("world: body " + std::to_string(id.index) + " (generation " +
+                                std::to_string(id.generation) + ") does not exist");
+  return static_cast<std::size_t>(id.index);
+}
+
+bool World::isValid(BodyId id) const {
+  return id.index >= 0 && static_cast<std::size_t>(id.index) < bodies_.size() &&
+         bodies_[static_cast<std::size_t>(id.index)].alive &&
+         bodies_[static_cast<std::size_t>(id.index)].generation == id.generation;
+}
+
+Vec2 World::center(const Body& b) const {
+  if (b.slot < 0) return apply(b.xf, b.localCenter);
+  const auto i = 3 * static_cast<std::size_t>(b.slot);
+  return {q_[i], q_[i + 1]};
+}
+
+BodyId World::createBody(const BodyDef& def) {
+  requireFinite("body", "position", def.position);
+  requireFinite("body", "angle", def.angle);
+  requireFinite("body", "linearVelocity", def.linearVelocity);
+  requireFinite("body", "angularVelocity", def.angularVelocity);
+  requireNonNegative("body", "linearDamping", def.linearDamping);
+  requireNonNegative("body", "angularDamping", def.angularDamping);
+  requireFinite("body", "gravityScale", def.gravityScale);
+  if (def.type != BodyType::staticBody && def.type != BodyType::kinematicBody &&
+      def.type != BodyType::dynamicBody)
+    fail("body", "type", "is not static, kinematic or dynamic");
+
+  std::int32_t index;
+  if (!freeBodies_.empty()) {
+    index = freeBodies_.back();
+    freeBodies_.pop_back();
+  } else {
+    index = static_cast<std::int32_t>(bodies_.size());
+    bodies_.emplace_back();
+  }
+  Body& b = bodies_[static_cast<std::size_t>(index)];
+  const std::uint32_t generation = b.generation + 1;
+  b = Body{};
+  b.generation = generation;
+  b.alive = true;
+  b.type = def.type;
+  b.xf = {def.position, Rot::fromAngle(def.angle)};
+  b.angle = def.angle;
+  b.linearDamping = def.linearDamping;
+  b.angularDamping = def.angularDamping;
+  b.gravityScale = def.gravityScale;
+  b.fixedRotation = def.fixedRotation;
+  b.bullet = def.bullet;
+  b.userData = def.userData;
+  if (def.type != BodyType::staticBody) {
+    b.slot = static_cast<std::int32_t>(slotBody_.size());
+    slotBody_.push_back(index);
+    q_.insert(q_.end(), {def.position.x, def.position.y, def.angle});
+    const float w = def.fixedRotation ? 0.0f : def.angularVelocity;
+    v_.insert(v_.end(), {def.linearVelocity.x, def.linearVelocity.y, w});
+  }
+  updateMass(b);
+  ++bodyCount_;
+  return {index, generation};
+}
+
+void World::destroyBody(BodyId id) {
+  const std::size_t index = checked(id);
+  Body& b = bodies_[index];
+  // Its contacts first (back to front: removal swaps the last contact in).
+  for (std::size_t c = contacts_.size(); c-- > 0;) {
+    const Contact& k = contacts_[c];
+    if (shapes_[static_cast<std::size_t>(k.shapeA)].body == id.index ||
+        shapes_[static_cast<std::size_t>(k.shapeB)].body == id.index)
+      destroyContact(c);
+  }
+  for (std::int32_t s : b.shapes) {
+    ShapeRecord& r = shapes_[static_cast<std::size_t>(s)];
+    broadphase_.destroyProxy(r.proxy);
+    r.alive = false;
+  }
+  if (b.slot >= 0) {
+    // The last slot moves into this one.
+    const auto from = 3 * (slotBody_.size() - 1), to = 3 * static_cast<std::size_t>(b.slot);
+    for (int k = 0; k < 3; ++k) {
+      q_[to + static_cast<std::size_t>(k)] = q_[from + static_cast<std::size_t>(k)];
+      v_[to + static_cast<std::size_t>(k)] = v_[from + static_cast<std::size_t>(k)];
+    }
+    const std::int32_t moved = slotBody_.back();
+    slotBody_[static_cast<std::size_t>(b.slot)] = moved;
+    bodies_[static_cast<std::size_t>(moved)].slot = b.slot;
+    slotBody_.pop_back();
+    q_.resize(q_.size() - 3);
+    v_.resize(v_.size() - 3);
+  }
+  b.alive = false;
+  b.shapes.clear();
+  freeBodies_.push_back(id.index);
+  --bodyCount_;
+}
+
+ShapeId World::createShape(BodyId bodyId, const Shape& shape, const ShapeDef& def) {
+  const std::size_t bi = checked(bodyId);
+  try {
+    validate(shape);
+  } catch (const InvalidShape& e) {
+    throw InvalidDefinition(std::string("shape: ") + e.what());
+  }
+  requireNonNegative("shape", "density", def.density);
+  requireNonNegative("shape", "friction", def.friction);
+  requireNonNegative("shape", "restitution", def.restitution);
+  if (!shape.isSolid() && bodies_[bi].type == BodyType::dynamicBody)
+    fail("shape", "type",
+         std::string("is a ") + shapeTypeName(shape.type) +
+             ", which has no area: only static and kinematic bodies may carry it");
+  const auto index = static_cast<std::int32_t>(shapes_.size());
+  ShapeRecord r;
+  r.shape = shape;
+  r.body = bodyId.index;
+  r.generation = 1;
+  r.alive = true;
+  r.isSensor = def.isSensor;
+  r.density = def.density;
+  r.friction = def.friction;
+  r.restitution = def.restitution;
+  r.userData = def.userData;
+  r.bound = computeBoundingCircle(shape);
+  Body& b = bodies_[bi];
+  ProxyDef proxy;
+  proxy.aabb = computeAABB(shape, b.xf);
+  proxy.filter = def.filter;
+  proxy.isStatic = b.type == BodyType::staticBody;
+  proxy.userData = static_cast<std::uint64_t>(index);
+  r.proxy = broadphase_.createProxy(proxy);
+  shapes_.push_back(r);
+  b.shapes.push_back(index);
+  updateMass(b);
+  return {index, 1};
+}
+
+void World::updateMass(Body& b) {
+  b.mass = b.invMass = b.inertia = b.invInertia = 0.0f;
+  if (b.type != BodyType::dynamicBody) {
+    b.localCenter = {};
+    return;
+  }
+  std::vector<MassData> parts;
+  for (std::int32_t s : b.shapes) {
+    const ShapeRecord& r = shapes_[static_cast<std::size_t>(s)];
+    if (r.shape.isSolid() && r.density > 0.0f) parts.push_back(computeMass(r.shape, r.density));
+  }
+  const MassData m = combineMass(parts);
+  const Vec2 oldCenter = center(b);
+  if (m.mass > 0.0f) {
+    b.mass = m.mass;
+    b.localCenter = m.center;
+    b.inertia = m.inertia;
+  } else {
+    // A dynamic body needs mass: 1 kg at the origin, as Box2D does.
+    b.mass = 1.0f;
+    b.localCenter = {};
+  }
+  b.invMass = 1.0f / b.mass;
+  b.invInertia = (b.fixedRotation || b.inertia <= 0.0f) ? 0.0f : 1.0f / b.inertia;
+  // The centre of mass moved: keep the origin where it is and the motion of every point.
+  const auto i = 3 * static_cast<std::size_t>(b.slot);
+  const Vec2 newCenter = apply(b.xf, b.localCenter);
+  const float w = v_[i + 2];
+  const Vec2 shift = cross(w, newCenter - oldCenter);
+  q_[i] = newCenter.x;
+  q_[i + 1] = newCenter.y;
+  v_[i] += shift.x;
+  v_[i + 1] += shift.y;
+}
+
+// ------------------------------------------------------------------------------ accessors
+
+Vec2 World::position(BodyId id) const {
+  return body(id).xf.p;
+}
+float World::angle(BodyId id) const {
+  return body(id).angle;
+}
+Transform World::transform(BodyId id) const {
+  return body(id).xf;
+}
+Vec2 World::worldCenter(BodyId id) const {
+  return center(body(id));
+}
+Vec2 World::linearVelocity(BodyId id) const {
+  const Body& b = body(id);
+  if (b.slot < 0) return {};
+  const auto i = 3 * static_cast<std::size_t>(b.slot);
+  return {v_[i], v_[i + 1]};
+}
+float World::angularVelocity(BodyId id) const {
+  const Body& b = body(id);
+  return b.slot < 0 ? 0.0f : v_[3 * static_cast<std::size_t>(b.slot) + 2];
+}
+float World::mass(BodyId id) const {
+  return body(id).mass;
+}
+float World::rotationalInertia(BodyId id) const {
+  return body(id).inertia;
+}
+BodyType World::type(BodyId id) const {
+  return body(id).type;
+}
+std::uint64_t World::userData(BodyId id) const {
+  return body(id).userData;
+}
+
+void World::setLinearVelocity(BodyId id, Vec2 v) {
+  Body& b = body(id);
+  requireFinite("setLinearVelocity", "velocity", v);
+  if (b.slot < 0) return;
+  const auto i = 3 * static_cast<std::size_t>(b.slot);
+  v_[i] = v.x;
+  v_[i + 1] = v.y;
+}
+void World::setAngularVelocity(BodyId id, float w) {
+  Body& b = body(id);
+  requireFinite("setAngularVelocity", "angular velocity", w);
+  if (b.slot < 0 || b.fixedRotation) return;
+  v_[3 * static_cast<std::size_t>(b.slot) + 2] = w;
+}
+void World::setTransform(BodyId id, Vec2 position, float angle) {
+  Body& b = body(id);
+  requireFinite("setTransform", "position", position);
+  requireFinite("setTransform", "angle", angle);
+  b.xf = {position, Rot::fromAngle(angle)};
+  b.angle = angle;
+  if (b.slot >= 0) {
+    const auto i = 3 * static_cast<std::size_t>(b.slot);
+    const Vec2 c = apply(b.xf, b.localCenter);
+    q_[i] = c.x;
+    q_[i + 1] = c.y;
+    q_[i + 2] = angle;
+  }
+  refitBody(b, {});
+}
+
+void World::applyForce(BodyId id, Vec2 force, Vec2 worldPoint) {
+  Body& b = body(id);
+  requireFinite("applyForce", "force", force);
+  requireFinite("applyForce", "point", worldPoint);
+  if (b.type != BodyType::dynamicBody) return;
+  b.force += force;
+  b.torque += cross(worldPoint - center(b), force);
+}
+void World::applyForceToCenter(BodyId id, Vec2 force) {
+  Body& b = body(id);
+  requireFinite("applyForceToCenter", "force", force);
+  if (b.type == BodyType::dynamicBody) b.force += force;
+}
+void World::applyTorque(BodyId id, float torque) {
+  Body& b = body(id);
+  requireFinite("applyTorque", "torque", torque);
+  if (b.type == BodyType::dynamicBody) b.torque += torque;
+}
+void World::applyLinearImpulse(BodyId id, Vec2 impulse, Vec2 worldPoint) {
+  Body& b = body(id);
+  requireFinite("applyLinearImpulse", "impulse", impulse);
+  requireFinite("applyLinearImpulse", "point", worldPoint);
+  if (b.type != BodyType::dynamicBody) return;
+  const auto i = 3 * static_cast<std::size_t>(b.slot);
+  v_[i] += b.invMass * impulse.x;
+  v_[i + 1] += b.invMass * impulse.y;
+  v_[i + 2] += b.invInertia * cross(worldPoint - center(b), impulse);
+}
+void World::applyAngularImpulse(BodyId id, float impulse) {
+  Body& b = body(id);
+  requireFinite("applyAngularImpulse", "impulse", impulse);
+  if (b.type == BodyType::dynamicBody)
+    v_[3 * static_cast<std::size_t>(b.slot) + 2] += b.invInertia * impulse;
+}
+
+int World::touchingContactCount() const {
+  int n = 0;
+  for (const Contact& c : contacts_)
+    n += c.touching;
+  return n;
+}
+
+std::uint64_t World::stateHash() const {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  auto mix = [&](float f) {
+    const auto bits = std::bit_cast<std::uint32_t>(f);
+    for (int k = 0; k < 4; ++k) {
+      h ^= (bits >> (8 * k)) & 0xFFu;
+      h *= 0x100000001b3ull;
+    }
+  };
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    const Body& b = bodies_[i];
+    if (!b.alive) continue;
+    mix(b.xf.p.x);
+    mix(b.xf.p.y);
+    mix(b.angle);
+    if (b.slot >= 0) {
+      const auto s = 3 * static_cast<std::size_t>(b.slot);
+      for (int k = 0; k < 3; ++k)
+        mix(v_[s + static_cast<std::size_t>(k)]);
+    }
+  }
+  return h;
+}
+
+double World::energy() const {
+  double e = 0;
+  for (const Body& b : bodies_) {
+    if (!b.alive || b.type != BodyType::dynamicBody) continue;
+    const auto i = 3 * static_cast<std::size_t>(b.slot);
+    const double vx = v_[i], vy = v_[i + 1], w = v_[i + 2];
+    e += 0.5 * b.mass * (vx * vx + vy * vy) + 0.5 * b.inertia * w * w;
+    e -= b.mass * b.gravityScale *
+         (static_cast<double>(def_.gravity.x) * q_[i] +
+          static_cast<double>(def_.gravity.y) * q_[i + 1]);
+  }
+  return e;
+}
+
+// ------------------------------------------------------------------------------------ step
+
+void World::step(float dt) {
+  if (!(dt > 0.0f) || !std::isfinite(dt))
+    throw std::invalid_argument("world: step dt must be finite and > 0, got " + std::to_string(dt));
+  const auto start = Clock::now();
+  auto t = start;
+  updatePairs();
+  profile_.updatePairs = millisecondsSince(t);
+  t = Clock::now();
+  narrowphase(dt);
+  profile_.narrowphase = millisecondsSince(t);
+  t = Clock::now();
+  solve(dt);
+  profile_.solve = millisecondsSince(t);
+  t = Clock::now();
+  // Transforms, AABBs and proxies from the new positions; forces are used up.
+  for (std::int32_t index : slotBody_) {
+    Body& b = bodies_[static_cast<std::size_t>(index)];
+    const auto i = 3 * static_cast<std::size_t>(b.slot);
+    const Vec2 before = b.xf.p;
+    b.angle = q_[i + 2];
+    b.xf.q = Rot::fromAngle(b.angle);
+    b.xf.p = Vec2{q_[i], q_[i + 1]} - rotate(b.xf.q, b.localCenter);
+    b.force = {};
+    b.torque = 0.0f;
+    refitBody(b, b.xf.p - before);
+  }
+  profile_.refit = millisecondsSince(t);
+  profile_.total = millisecondsSince(start);
+  time_ += dt;
+}
+
+void World::refitBody(Body& b, Vec2 displacement) {
+  for (std::int32_t s : b.shapes) {
+    const ShapeRecord& r = shapes_[static_cast<std::size_t>(s)];
+    broadphase_.moveProxy(r.proxy, computeAABB(r.shape, b.xf), displacement);
+  }
+}
+
+void World::updatePairs() {
+  broadphase_.updatePairs(newPairs_);
+  for (const ProxyPair& pair : newPairs_) {
+    auto sa = static_cast<std::int32_t>(broadphase_.userData(pair.a));
+    auto sb = static_cast<std::int32_t>(broadphase_.userData(pair.b));
+    if (sa > sb) std::swap(sa, sb);
+    const ShapeRecord& ra = shapes_[static_cast<std::size_t>(sa)];
+    const ShapeRecord& rb = shapes_[static_cast<std::size_t>(sb)];
+    if (ra.body == rb.body || ra.isSensor || rb.isSensor) continue;
+    const Body& ba = bodies_[static_cast<std::size_t>(ra.body)];
+    const Body& bb = bodies_[static_cast<std::size_t>(rb.body)];
+    if (ba.type != BodyType::dynamicBody && bb.type != BodyType::dynamicBody) continue;
+    if (!hasManifold(ra.shape.type, rb.shape.type)) continue;
+    const std::uint64_t key = pairKey(sa, sb);
+    if (contactIndex_.count(key)) continue;
+    Contact c;
+    c.shapeA = sa;
+    c.shapeB = sb;
+    c.friction = mixFriction(ra.friction, rb.friction);
+    c.restitution = mixRestitution(ra.restitution, rb.restitution);
+    contactIndex_[key] = static_cast<std::int32_t>(contacts_.size());
+    contacts_.push_back(c);
+  }
+}
+
+void World::destroyContact(std::size_t index) {
+  contactIndex_.erase(pairKey(contacts_[index].shapeA, contacts_[index].shapeB));
+  if (index + 1 != contacts_.size()) {
+    contacts_[index] = contacts_.back();
+    contactIndex_[pairKey(contacts_[index].shapeA, contacts_[index].shapeB)] =
+        static_cast<std::int32_t>(index);
+  }
+  contacts_.pop_back();
+}
+
+void World::narrowphase(float dt) {
+  // How far a shape's surface can move towards anything this step: its body's speed plus its
+  // turning speed times its reach from the centre of mass.
+  auto reachSpeed = [&](const ShapeRecord& r) {
+    const Body& b = bodies_[static_cast<std::size_t>(r.body)];
+    if (b.slot < 0) return 0.0f;
+    const auto i = 3 * static_cast<std::size_t>(b.slot);
+    const float reach = length(r.bound.center - b.localCenter) + r.bound.radius;
+    return length(Vec2{v_[i], v_[i + 1]}) + std::fabs(v_[i + 2]) * reach;
+  };
+  // Back to front: a destroyed contact is replaced by the last one, already updated.
+  for (std::size_t i = contacts_.size(); i-- > 0;) {
+    Contact& c = contacts_[i];
+    const ShapeRecord& ra = shapes_[static_cast<std::size_t>(c.shapeA)];
+    const ShapeRecord& rb = shapes_[static_cast<std::size_t>(c.shapeB)];
+    if (!overlaps(broadphase_.fatAABB(ra.proxy), broadphase_.fatAABB(rb.proxy))) {
+      destroyContact(i);
+      continue;
+    }
+    const Transform& xfA = bodies_[static_cast<std::size_t>(ra.body)].xf;
+    const Transform& xfB = bodies_[static_cast<std::size_t>(rb.body)].xf;
+    const Manifold old = c.manifold;
+    const float oldNormal[2] = {c.normalImpulse[0], c.normalImpulse[1]};
+    const float oldTangent[2] = {c.tangentImpulse[0], c.tangentImpulse[1]};
+    const float margin = kSpeculativeDistance + dt * (reachSpeed(ra) + reachSpeed(rb));
+    c.manifold = collide(ra.shape, xfA, rb.shape, xfB, margin);
+    // Warm start: a point keeps last step's impulses when the same features touch.
+    for (int k = 0; k < c.manifold.pointCount; ++k) {
+      c.normalImpulse[k] = c.tangentImpulse[k] = 0.0f;
+      for (int j = 0; j < old.pointCount; ++j)
+        if (old.points[j].id == c.manifold.points[k].id) {
+          c.normalImpulse[k] = oldNormal[j];
+          c.tangentImpulse[k] = oldTangent[j];
+        }
+    }
+    c.touching = c.manifold.pointCount > 0;
+  }
+}
+
+// ------------------------------------------------------------------------------------ solve
+
+namespace {
+
+// Impulse P at one contact point: -P on A, +P on B.
+template <class Constraint, class Point>
+void applyImpulse(const Constraint& cc, const Point& p, Vec2 P, Vec2& vA, float& wA, Vec2& vB,
+                  float& wB) {
+  vA -= cc.invMassA * P;
+  wA -= cc.invIA * cross(p.rA, P);
+  vB += cc.invMassB * P;
+  wB += cc.invIB * cross(p.rB, P);
+}
+
+}  // namespace
+
+void World::accelerations(std::span<const float> q, std::span<const float> v, float t,
+                          std::span<float> a) {
+  for (std::size_t s = 0; s < slotBody_.size(); ++s) {
+    const Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
+    const std::size_t i = 3 * s;
+    if (b.type != BodyType::dynamicBody) {
+      a[i] = a[i + 1] = a[i + 2] = 0.0f;
+      continue;
+    }
+    a[i] = b.gravityScale * def_.gravity.x + b.invMass * b.force.x;
+    a[i + 1] = b.gravityScale * def_.gravity.y + b.invMass * b.force.y;
+    a[i + 2] = b.invInertia * b.torque;
+  }
+  if (!fields_.empty()) {
+    ForceStage stage(*this, q, v, a, t);
+    for (ForceField& field : fields_)
+      field(stage);
+  }
+}
+
+template <class Solve>
+void World::forEachConstraint(Solve&& solve) {
+  for (ContactConstraint& cc : constraints_) {
+    Vec2 vA{}, vB{};
+    float wA = 0.0f, wB = 0.0f;
+    const std::size_t iA = 3 * static_cast<std::size_t>(std::max(cc.slotA, 0));
+    const std::size_t iB = 3 * static_cast<std::size_t>(std::max(cc.slotB, 0));
+    if (cc.slotA >= 0) vA = {v_[iA], v_[iA + 1]}, wA = v_[iA + 2];
+    if (cc.slotB >= 0) vB = {v_[iB], v_[iB + 1]}, wB = v_[iB + 2];
+    solve(cc, vA, wA, vB, wB);
+    if (cc.slotA >= 0) v_[iA] = vA.x, v_[iA + 1] = vA.y, v_[iA + 2] = wA;
+    if (cc.slotB >= 0) v_[iB] = vB.x, v_[iB + 1] = vB.y, v_[iB + 2] = wB;
+  }
+}
+
+void World::solveContacts(float h, bool useBias) {
+  // Soft contact (Catto, "Solver2D", 2024): a spring-damper of stiffness omega and damping
+  // ratio zeta, written as a bias and a mass / impulse scale for an implicit step of size h.
+  const float hertz = std::min(def_.contactHertz, 0.25f / h);
+  const float omega = 2.0f * kPi * hertz, zeta = def_.contactDampingRatio;
+  const float a1 = 2.0f * zeta + h * omega, a2 = h * omega * a1, a3 = 1.0f / (1.0f + a2);
+  const float biasRate = omega / a1, softMassScale = a2 * a3, softImpulseScale = a3;
+  const float invH = 1.0f / h;
+  forEachConstraint([&](ContactConstraint& cc, Vec2& vA, float& wA, Vec2& vB, float& wB) {
+    const Vec2 n = cc.normal;
+    const Vec2 dpA = cc.slotA >= 0 ? deltaPosition_[static_cast<std::size_t>(cc.slotA)] : Vec2{};
+    const Vec2 dpB = cc.slotB >= 0 ? deltaPosition_[static_cast<std::size_t>(cc.slotB)] : Vec2{};
+    const Rot dqA = cc.slotA >= 0 ? deltaRotation_[static_cast<std::size_t>(cc.slotA)] : Rot{};
+    const Rot dqB = cc.slotB >= 0 ? deltaRotation_[static_cast<std::size_t>(cc.slotB)] : Rot{};
+    for (int k = 0; k < cc.pointCount; ++k) {
+      ConstraintPoint& p = cc.points[k];
+      // Separation now, from how far the bodies moved and turned since the manifold was made.
+      const Vec2 d = (dpB - dpA) + (rotate(dqB, p.rB) - p.rB) - (rotate(dqA, p.rA) - p.rA);
+      const float s = dot(d, n) + p.baseSeparation;
+      float bias = 0.0f, massScale = 1.0f, impulseScale = 0.0f;
+      if (s > 0.0f) {
+        bias = s * invH;  // speculative: approach no faster than closes the gap this substep
+      } else if (useBias) {
+        bias = std::max(biasRate * s, -def_.maxPushoutSpeed);
+        massScale = softMassScale;
+        impulseScale = softImpulseScale;
+      }
+      const Vec2 dv = (vB + cross(wB, p.rB)) - (vA + cross(wA, p.rA));
+      const float vn = dot(dv, n);
+      const float impulse =
+          -p.normalMass * massScale * (vn + bias) - impulseScale * p.normalImpulse;
+      const float total = std::max(p.normalImpulse + impulse, 0.0f);
+      const float applied = total - p.normalImpulse;
+      p.normalImpulse = total;
+      p.maxNormalImpulse = std::max(p.maxNormalImpulse, applied);
+      const Vec2 P = applied * n;
+      applyImpulse(cc, p, P, vA, wA, vB, wB);
+    }
+    // Coulomb friction, bounded by each point's normal impulse.
+    const Vec2 t = rightPerp(n);
+    for (int k = 0; k < cc.pointCount; ++k) {
+      ConstraintPoint& p = cc.points[k];
+      const Vec2 dv = (vB + cross(wB, p.rB)) - (vA + cross(wA, p.rA));
+      const float vt = dot(dv, t);
+      const float limit = cc.friction * p.normalImpulse;
+      const float total = std::clamp(p.tangentImpulse - p.tangentMass * vt, -limit, limit);
+      const float applied = total - p.tangentImpulse;
+      p.tangentImpulse = total;
+      const Vec2 P = applied * t;
+      applyImpulse(cc, p, P, vA, wA, vB, wB);
+    }
+  });
+}
+
+void World::applyRestitution() {
+  const float threshold = def_.restitutionThreshold;
+  forEachConstraint([&](ContactConstraint& cc, Vec2& vA, float& wA, Vec2& vB, float& wB) {
+    if (cc.restitution == 0.0f) return;
+    const Vec2 n = cc.normal;
+    for (int k = 0; k < cc.pointCount; ++k) {
+      ConstraintPoint& p = cc.points[k];
+      // Only points that were approaching fast enough and that the solver pushed.
+      if (p.relativeVelocity > -threshold || p.maxNormalImpulse == 0.0f) continue;
+      const Vec2 dv = (vB + cross(wB, p.rB)) - (vA + cross(wA, p.rA));
+      const float vn = dot(dv, n);
+      const float impulse = -p.normalMass * (vn + cc.restitution * p.relativeVelocity);
+      const float total = std::max(p.normalImpulse + impulse, 0.0f);
+      const float applied = total - p.normalImpulse;
+      p.normalImpulse = total;
+      p.maxNormalImpulse = std::max(p.maxNormalImpulse, applied);
+      const Vec2 P = applied * n;
+      applyImpulse(cc, p, P, vA, wA, vB, wB);
+    }
+  });
+}
+
+void World::solve(float dt) {
+  const std::size_t slots = slotBody_.size();
+  // Prepare: one constraint per touching contact, anchors from the centres of mass.
+  constraints_.clear();
+  for (std::size_t ci = 0; ci < contacts_.size(); ++ci) {
+    const Contact& c = contacts_[ci];
+    if (!c.touching) continue;
+    const Body& a =
+        bodies_[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(c.shapeA)].body)];
+    const Body& b =
+        bodies_[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(c.shapeB)].body)];
+    ContactConstraint cc;
+    cc.contact = static_cast<std::int32_t>(ci);
+    cc.slotA = a.type == BodyType::dynamicBody || a.type == BodyType::kinematicBody ? a.slot : -1;
+    cc.slotB = b.type == BodyType::dynamicBody || b.type == BodyType::kinematicBody ? b.slot : -1;
+    cc.invMassA = a.invMass;
+    cc.invIA = a.invInertia;
+    cc.invMassB = b.invMass;
+    cc.invIB = b.invInertia;
+    cc.normal = c.manifold.normal;
+    cc.friction = c.friction;
+    cc.restitution = c.restitution;
+    cc.pointCount = c.manifold.pointCount;
+    const Vec2 offsetA = rotate(a.xf.q, a.localCenter), offsetB = rotate(b.xf.q, b.localCenter);
+    const Vec2 vA = cc.slotA >= 0 ? Vec2{v_[3 * static_cast<std::size_t>(cc.slotA)],
+                                         v_[3 * static_cast<std::size_t>(cc.slotA) + 1]}
+                                  : Vec2{};
+    const float wA = cc.slotA >= 0 ? v_[3 * static_cast<std::size_t>(cc.slotA) + 2] : 0.0f;
+    const Vec2 vB = cc.slotB >= 0 ? Vec2{v_[3 * static_cast<std::size_t>(cc.slotB)],
+                                         v_[3 * static_cast<std::size_t>(cc.slotB) + 1]}
+                                  : Vec2{};
+    const float wB = cc.slotB >= 0 ? v_[3 * static_cast<std::size_t>(cc.slotB) + 2] : 0.0f;
+    const Vec2 t = rightPerp(cc.normal);
+    for (int k = 0; k < cc.pointCount; ++k) {
+      const ManifoldPoint& mp = c.manifold.points[k];
+      ConstraintPoint& p = cc.points[k];
+      p.rA = mp.anchorA - offsetA;
+      p.rB = mp.anchorB - offsetB;
+      p.baseSeparation = mp.separation;
+      const float rnA = cross(p.rA, cc.normal), rnB = cross(p.rB, cc.normal);
+      const float kNormal = cc.invMassA + cc.invMassB + cc.invIA * rnA * rnA + cc.invIB * rnB * rnB;
+      p.normalMass = kNormal > 0.0f ? 1.0f / kNormal : 0.0f;
+      const float rtA = cross(p.rA, t), rtB = cross(p.rB, t);
+      const float kTangent =
+          cc.invMassA + cc.invMassB + cc.invIA * rtA * rtA + cc.invIB * rtB * rtB;
+      p.tangentMass = kTangent > 0.0f ? 1.0f / kTangent : 0.0f;
+      p.normalImpulse = c.normalImpulse[k];
+      p.tangentImpulse = c.tangentImpulse[k];
+      p.maxNormalImpulse = 0.0f;
+      const Vec2 dv = (vB + cross(wB, p.rB)) - (vA + cross(wA, p.rA));
+      p.relativeVelocity = dot(dv, cc.normal);
+    }
+    constraints_.push_back(cc);
+  }
+
+  startCenter_.resize(slots);
+  startAngle_.resize(slots);
+  deltaPosition_.assign(slots, Vec2{});
+  deltaRotation_.assign(slots, Rot{});
+  for (std::size_t s = 0; s < slots; ++s) {
+    startCenter_[s] = {q_[3 * s], q_[3 * s + 1]};
+    startAngle_[s] = q_[3 * s + 2];
+  }
+
+  const float h = dt / static_cast<float>(def_.substeps);
+  auto accel = [this](std::span<const float> q, std::span<const float> v, float t,
+                      std::span<float> a) { accelerations(q, v, t, a); };
+  for (int sub = 0; sub < def_.substeps; ++sub) {
+    const float t = static_cast<float>(time_) + static_cast<float>(sub) * h;
+    // Free motion by the world's integrator, then damping (implicit, unconditionally stable).
+    integrate<float>(def_.integrator, q_, v_, t, h, accel, scratch_);
+    for (std::size_t s = 0; s < slots; ++s) {
+      const Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
+      if (b.linearDamping > 0.0f) {
+        const float f = 1.0f / (1.0f + h * b.linearDamping);
+        v_[3 * s] *= f;
+        v_[3 * s + 1] *= f;
+      }
+      if (b.angularDamping > 0.0f) v_[3 * s + 2] *= 1.0f / (1.0f + h * b.angularDamping);
+    }
+    freeV_ = v_;
+    // Warm start with the impulses carried so far, then solve with the soft bias.
+    forEachConstraint([](ContactConstraint& cc, Vec2& vA, float& wA, Vec2& vB, float& wB) {
+      const Vec2 tangent = rightPerp(cc.normal);
+      // The approach speed that restitution reverses: the fastest free-motion normal velocity
+      // of the step, which includes what gravity added before the impact (the velocity at the
+      // start of the step falls short by up to g h).
+      for (int k = 0; k < cc.pointCount; ++k) {
+        ConstraintPoint& p = cc.points[k];
+        const Vec2 dv = (vB + cross(wB, p.rB)) - (vA + cross(wA, p.rA));
+        p.relativeVelocity = std::min(p.relativeVelocity, dot(dv, cc.normal));
+      }
+      for (int k = 0; k < cc.pointCount; ++k) {
+        const ConstraintPoint& p = cc.points[k];
+        const Vec2 P = p.normalImpulse * cc.normal + p.tangentImpulse * tangent;
+        applyImpulse(cc, p, P, vA, wA, vB, wB);
+      }
+    });
+    solveContacts(h, true);
+    // Positions: the free motion plus what the contacts changed in the velocity.
+    for (std::size_t k = 0; k < q_.size(); ++k)
+      q_[k] += h * (v_[k] - freeV_[k]);
+    for (std::size_t s = 0; s < slots; ++s) {
+      deltaPosition_[s] = Vec2{q_[3 * s], q_[3 * s + 1]} - startCenter_[s];
+      deltaRotation_[s] = Rot::fromAngle(q_[3 * s + 2] - startAngle_[s]);
+    }
+    // Relax: the same solve without the push-out bias, so separating bodies keep no speed
+    // from it (the bias pushes positions apart; relax removes its velocity).
+    solveContacts(h, false);
+  }
+  applyRestitution();
+  for (const ContactConstraint& cc : constraints_) {
+    Contact& c = contacts_[static_cast<std::size_t>(cc.contact)];
+    for (int k = 0; k < cc.pointCount; ++k) {
+      c.normalImpulse[k] = cc.points[k].normalImpulse;
+      c.tangentImpulse[k] = cc.points[k].tangentImpulse;
+    }
+  }
+}
+
+}  // namespace rc

@@ -14,7 +14,7 @@ void checkAABB(const AABB& box, const char* where) {
 // The fat AABB for a tight one: the margin on every side, stretched along the displacement.
 AABB fatten(const AABB& aabb, Vec2 displacement) {
   AABB fat = inflate(aabb, kAabbMargin);
-  const Vec2 d = kDisplacementMultiplier * displacement;
+  const Vec2 d = predictedStretch(displacement);
   (d.x < 0.0f ? fat.lower.x : fat.upper.x) += d.x;
   (d.y < 0.0f ? fat.lower.y : fat.upper.y) += d.y;
   return fat;
@@ -22,13 +22,20 @@ AABB fatten(const AABB& aabb, Vec2 displacement) {
 
 }  // namespace
 
+Vec2 predictedStretch(Vec2 displacement) {
+  // Below this length the cap does not bite: no square root for the usual mover.
+  constexpr float uncapped = kMaxPrediction / (kDisplacementMultiplier - 1.0f);
+  if (lengthSquared(displacement) <= uncapped * uncapped)
+    return kDisplacementMultiplier * displacement;
+  const float len = length(displacement);
+  if (!(len > 0.0f)) return displacement;  // zero stays zero; NaN is caught by the caller
+  return std::min(kDisplacementMultiplier, 1.0f + kMaxPrediction / len) * displacement;
+}
+
 // ---------------------------------------------------------------------------------- ProxyStore
 
-std::size_t ProxyStore::checked(ProxyId id) const {
-  if (id < 0 || static_cast<std::size_t>(id) >= proxies_.size() ||
-      !proxies_[static_cast<std::size_t>(id)].alive)
-    throw InvalidProxy(std::string(name_) + ": no proxy " + std::to_string(id));
-  return static_cast<std::size_t>(id);
+void ProxyStore::noSuchProxy(ProxyId id) const {
+  throw InvalidProxy(std::string(name_) + ": no proxy " + std::to_string(id));
 }
 
 ProxyId ProxyStore::allocate(const ProxyDef& def) {
@@ -41,12 +48,14 @@ ProxyId ProxyStore::allocate(const ProxyDef& def) {
   } else {
     id = static_cast<ProxyId>(proxies_.size());
     proxies_.emplace_back();
+    links_.emplace_back();
   }
   ProxyData& p = proxies_[static_cast<std::size_t>(id)];
   p = ProxyData{};
+  links_[static_cast<std::size_t>(id)] = ProxyLinks{};
+  links_[static_cast<std::size_t>(id)].userData = def.userData;
   p.fat = inflate(def.aabb, kAabbMargin);
   p.filter = def.filter;
-  p.userData = def.userData;
   p.isStatic = def.isStatic;
   p.alive = true;
   // A new proxy, static ones included, must find its pairs in the next updatePairs.
@@ -67,9 +76,13 @@ void ProxyStore::release(ProxyId id) {
 bool ProxyStore::refit(ProxyId id, const AABB& aabb, Vec2 displacement) {
   ProxyData& p = proxies_[checked(id)];
   const AABB fat = fatten(aabb, displacement);
-  // The common case first: still inside. A NaN anywhere fails one of these comparisons and
-  // takes the checked path below.
-  if (p.fat.contains(aabb) && aabb.lower.x <= aabb.upper.x && aabb.lower.y <= aabb.upper.y) {
+  // The common case first: still inside. The box must hold the proxy for its next step too, so
+  // that a fast mover's pairs exist before it moves: the tight box swept by the displacement.
+  // A NaN anywhere fails one of these comparisons and takes the checked path below.
+  AABB swept = aabb;
+  (displacement.x < 0.0f ? swept.lower.x : swept.upper.x) += displacement.x;
+  (displacement.y < 0.0f ? swept.lower.y : swept.upper.y) += displacement.y;
+  if (p.fat.contains(swept) && aabb.lower.x <= aabb.upper.x && aabb.lower.y <= aabb.upper.y) {
     // But a fat AABB left stretched by a fast mover that slowed down would pair with
     // everything around it, so it is refitted once it is far larger than a new one (a steady
     // mover's boxes keep their size and are not).
@@ -136,12 +149,13 @@ ProxyId& Quadtree::headOf(Tree& tree, int level, int cell) {
 
 void Quadtree::link(ProxyId id, Tree& tree, int level, int cell) {
   ProxyData& p = proxies_[static_cast<std::size_t>(id)];
+  ProxyLinks& k = links_[static_cast<std::size_t>(id)];
   ProxyId& head = headOf(tree, level, cell);
-  p.level = level;
-  p.cell = cell;
-  p.prev = kNullProxy;
+  k.level = level;
+  k.cell = cell;
+  k.prev = kNullProxy;
   p.next = head;
-  if (head != kNullProxy) proxies_[static_cast<std::size_t>(head)].prev = id;
+  if (head != kNullProxy) links_[static_cast<std::size_t>(head)].prev = id;
   head = id;
   if (level < 0) {
     ++tree.outsideCount;
@@ -155,18 +169,19 @@ void Quadtree::link(ProxyId id, Tree& tree, int level, int cell) {
 
 void Quadtree::unlink(ProxyId id) {
   ProxyData& p = proxies_[static_cast<std::size_t>(id)];
+  ProxyLinks& k = links_[static_cast<std::size_t>(id)];
   Tree& tree = treeOf(p);
-  if (p.prev != kNullProxy)
-    proxies_[static_cast<std::size_t>(p.prev)].next = p.next;
+  if (k.prev != kNullProxy)
+    proxies_[static_cast<std::size_t>(k.prev)].next = p.next;
   else
-    headOf(tree, p.level, p.cell) = p.next;
-  if (p.next != kNullProxy) proxies_[static_cast<std::size_t>(p.next)].prev = p.prev;
-  p.prev = p.next = kNullProxy;
-  if (p.level < 0) {
+    headOf(tree, k.level, k.cell) = p.next;
+  if (p.next != kNullProxy) links_[static_cast<std::size_t>(p.next)].prev = k.prev;
+  k.prev = p.next = kNullProxy;
+  if (k.level < 0) {
     --tree.outsideCount;
     return;
   }
-  Level& lv = tree.levels[static_cast<std::size_t>(p.level)];
+  Level& lv = tree.levels[static_cast<std::size_t>(k.level)];
   if (--lv.population == 0) lv.reach = 0.0f;
 }
 
@@ -287,8 +302,9 @@ void Quadtree::validate() const {
         const std::string name = "proxy " + std::to_string(id);
         if (!p.alive) fail(name + " is dead but linked");
         if (p.isStatic != isStatic) fail(name + " is in the wrong tree");
-        if (p.prev != prev) fail(name + " has a broken back link");
-        if (p.level != level || p.cell != cell) fail(name + " records the wrong cell");
+        const ProxyLinks& k = links_[static_cast<std::size_t>(id)];
+        if (k.prev != prev) fail(name + " has a broken back link");
+        if (k.level != level || k.cell != cell) fail(name + " records the wrong cell");
         if (lv != nullptr) {
           // Inside its cell grown by the level's reach (what the queries rely on), which is at
           // most half a cell (the loose bounds).

@@ -113,6 +113,12 @@ bool World::isValid(BodyId id) const {
          bodies_[static_cast<std::size_t>(id.index)].generation == id.generation;
 }
 
+Vec2 World::velocityOf(const Body& b) const {
+  if (b.slot < 0) return {};
+  const auto i = 3 * static_cast<std::size_t>(b.slot);
+  return {v_[i], v_[i + 1]};
+}
+
 Vec2 World::center(const Body& b) const {
   if (b.slot < 0) return apply(b.xf, b.localCenter);
   const auto i = 3 * static_cast<std::size_t>(b.slot);
@@ -161,6 +167,7 @@ BodyId World::createBody(const BodyDef& def) {
     v_.insert(v_.end(), {def.linearVelocity.x, def.linearVelocity.y, w});
   }
   updateMass(b);
+  if (b.slot >= 0) pendingRefit_.push_back(index);
   ++bodyCount_;
   return {index, generation};
 }
@@ -236,6 +243,7 @@ ShapeId World::createShape(BodyId bodyId, const Shape& shape, const ShapeDef& de
   shapes_.push_back(r);
   b.shapes.push_back(index);
   updateMass(b);
+  if (b.slot >= 0) pendingRefit_.push_back(bodyId.index);
   return {index, 1};
 }
 
@@ -318,6 +326,7 @@ void World::setLinearVelocity(BodyId id, Vec2 v) {
   const auto i = 3 * static_cast<std::size_t>(b.slot);
   v_[i] = v.x;
   v_[i + 1] = v.y;
+  pendingRefit_.push_back(id.index);
 }
 void World::setAngularVelocity(BodyId id, float w) {
   Body& b = body(id);
@@ -339,6 +348,7 @@ void World::setTransform(BodyId id, Vec2 position, float angle) {
     q_[i + 2] = angle;
   }
   refitBody(b, {});
+  if (b.slot >= 0) pendingRefit_.push_back(id.index);
 }
 
 void World::applyForce(BodyId id, Vec2 force, Vec2 worldPoint) {
@@ -428,6 +438,14 @@ void World::step(float dt) {
     throw std::invalid_argument("world: step dt must be finite and > 0, got " + std::to_string(dt));
   const auto start = Clock::now();
   auto t = start;
+  // Bodies new or changed since the last step: proxies stretched along this step's motion.
+  std::sort(pendingRefit_.begin(), pendingRefit_.end());
+  pendingRefit_.erase(std::unique(pendingRefit_.begin(), pendingRefit_.end()), pendingRefit_.end());
+  for (std::int32_t index : pendingRefit_) {
+    Body& b = bodies_[static_cast<std::size_t>(index)];
+    if (b.alive && b.slot >= 0) refitBody(b, dt * velocityOf(b));
+  }
+  pendingRefit_.clear();
   updatePairs();
   profile_.updatePairs = millisecondsSince(t);
   t = Clock::now();
@@ -441,13 +459,12 @@ void World::step(float dt) {
   for (std::int32_t index : slotBody_) {
     Body& b = bodies_[static_cast<std::size_t>(index)];
     const auto i = 3 * static_cast<std::size_t>(b.slot);
-    const Vec2 before = b.xf.p;
     b.angle = q_[i + 2];
     b.xf.q = Rot::fromAngle(b.angle);
     b.xf.p = Vec2{q_[i], q_[i + 1]} - rotate(b.xf.q, b.localCenter);
     b.force = {};
     b.torque = 0.0f;
-    refitBody(b, b.xf.p - before);
+    refitBody(b, dt * Vec2{v_[i], v_[i + 1]});  // where it goes next step
   }
   profile_.refit = millisecondsSince(t);
   profile_.total = millisecondsSince(start);
@@ -520,7 +537,9 @@ void World::narrowphase(float dt) {
     const Manifold old = c.manifold;
     const float oldNormal[2] = {c.normalImpulse[0], c.normalImpulse[1]};
     const float oldTangent[2] = {c.tangentImpulse[0], c.tangentImpulse[1]};
-    const float margin = kSpeculativeDistance + dt * (reachSpeed(ra) + reachSpeed(rb));
+    const float margin = def_.continuous
+                             ? kSpeculativeDistance + dt * (reachSpeed(ra) + reachSpeed(rb))
+                             : kSpeculativeDistance;
     c.manifold = collide(ra.shape, xfA, rb.shape, xfB, margin);
     // Warm start: a point keeps last step's impulses when the same features touch.
     for (int k = 0; k < c.manifold.pointCount; ++k) {

@@ -12,7 +12,9 @@
 //                 integrator (forces evaluated at its stages), warm start, solve contacts (soft),
 //                 positions corrected by the velocity the contacts changed, relax; then
 //                 restitution, and the impulses stored for the next step's warm start
-//   refit         body transforms, shape AABBs and quadtree proxies updated
+//   refit         body transforms, shape AABBs and quadtree proxies updated, each fat AABB
+//                 stretched along the body's next step (its velocity times dt), so the pairs a
+//                 fast body will meet exist before it moves
 //
 // Each phase is timed into profile(). Bodies are referred to by generational handles: a handle
 // to a destroyed body is detected, never silently reused.
@@ -98,6 +100,10 @@ struct WorldDef {
   float contactDampingRatio = 10.0f;
   // The fastest overlapping bodies are pushed apart (m/s).
   float maxPushoutSpeed = 3.0f;
+  // Continuous collision: contact points are kept while shapes are within what their bodies
+  // can close in the step (speculative contacts), so fast bodies stop at surfaces instead of
+  // passing through thin walls. Off: only within kSpeculativeDistance (shows the tunnelling).
+  bool continuous = true;
   // The region most bodies live in: the quadtree's world square. Bodies outside it still work.
   AABB bounds{{-512.0f, -512.0f}, {512.0f, 512.0f}};
 };
@@ -246,6 +252,7 @@ class World {
   Body& body(BodyId id) { return bodies_[checked(id)]; }
   const Body& body(BodyId id) const { return bodies_[checked(id)]; }
   Vec2 center(const Body& b) const;
+  Vec2 velocityOf(const Body& b) const;
   template <class Solve>
   void forEachConstraint(Solve&& solve);
   void solveContacts(float h, bool useBias);
@@ -272,6 +279,9 @@ class World {
   std::vector<std::int32_t> slotBody_;
   IntegratorScratch<float> scratch_;
   std::vector<ProxyPair> newPairs_;
+  // Bodies created, moved or given a velocity since the last step: their proxies are stretched
+  // along their first step's motion before pairs are found.
+  std::vector<std::int32_t> pendingRefit_;
   std::vector<ContactConstraint> constraints_;
   // Per slot during the solve: the free-motion velocities of the substep, and how far each body
   // has moved and turned since the constraints were prepared.

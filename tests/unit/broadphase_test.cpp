@@ -322,9 +322,13 @@ TEST(Broadphase, FatAABBFollowsTheMotionAndShrinksWhenItStops) {
   ProxyId id = tree.createProxy(moving(boxAt({0, 0}, {0.5f, 0.5f})));
   EXPECT_TRUE(tree.moveProxy(id, boxAt({0.5f, 0}, {0.5f, 0.5f}), {0.5f, 0}));
   AABB fat = tree.fatAABB(id);
-  EXPECT_FLOAT_EQ(fat.upper.x, 1.0f + rc::kAabbMargin + rc::kDisplacementMultiplier * 0.5f);
+  // Stretched by 3 x 0.5 m: kDisplacementMultiplier times the displacement would reach more
+  // than kMaxPrediction beyond it.
+  EXPECT_FLOAT_EQ(fat.upper.x, 1.0f + rc::kAabbMargin + rc::predictedStretch({0.5f, 0}).x);
+  EXPECT_FLOAT_EQ(rc::predictedStretch({0.5f, 0}).x, 1.5f);
+  EXPECT_FLOAT_EQ(rc::predictedStretch({0.05f, 0}).x, rc::kDisplacementMultiplier * 0.05f);
   EXPECT_FLOAT_EQ(fat.lower.x, -rc::kAabbMargin);
-  // Moving on at the same speed stays inside for a few steps.
+  // Moving on at the same speed stays inside for a few steps (with room for the next one).
   EXPECT_FALSE(tree.moveProxy(id, boxAt({1.0f, 0}, {0.5f, 0.5f}), {0.5f, 0}));
   EXPECT_FALSE(tree.moveProxy(id, boxAt({1.5f, 0}, {0.5f, 0.5f}), {0.5f, 0}));
   // At rest the stretched box is far larger than needed: it is refitted.

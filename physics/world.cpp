@@ -619,29 +619,88 @@ void World::solveContacts(float h, bool useBias) {
     const Vec2 dpB = cc.slotB >= 0 ? deltaPosition_[static_cast<std::size_t>(cc.slotB)] : Vec2{};
     const Rot dqA = cc.slotA >= 0 ? deltaRotation_[static_cast<std::size_t>(cc.slotA)] : Rot{};
     const Rot dqB = cc.slotB >= 0 ? deltaRotation_[static_cast<std::size_t>(cc.slotB)] : Rot{};
+    // Each point's regime: speculative (apart: approach no faster than closes the gap this
+    // substep), soft (touching, with the push-out bias), or rigid (relax, no bias).
+    float bias[2] = {0, 0}, massScale[2] = {1, 1}, impulseScale[2] = {0, 0}, vn[2] = {0, 0};
     for (int k = 0; k < cc.pointCount; ++k) {
       ConstraintPoint& p = cc.points[k];
       // Separation now, from how far the bodies moved and turned since the manifold was made.
       const Vec2 d = (dpB - dpA) + (rotate(dqB, p.rB) - p.rB) - (rotate(dqA, p.rA) - p.rA);
       const float s = dot(d, n) + p.baseSeparation;
-      float bias = 0.0f, massScale = 1.0f, impulseScale = 0.0f;
       if (s > 0.0f) {
-        bias = s * invH;  // speculative: approach no faster than closes the gap this substep
+        bias[k] = s * invH;
+      } else if (s > -kLinearSlop) {
+        // Within the slop: a rigid contact that carries its load without pressing in further.
       } else if (useBias) {
-        bias = std::max(biasRate * s, -def_.maxPushoutSpeed);
-        massScale = softMassScale;
-        impulseScale = softImpulseScale;
+        bias[k] = std::max(biasRate * s, -def_.maxPushoutSpeed);
+        massScale[k] = softMassScale;
+        impulseScale[k] = softImpulseScale;
       }
-      const Vec2 dv = (vB + cross(wB, p.rB)) - (vA + cross(wA, p.rA));
-      const float vn = dot(dv, n);
-      const float impulse =
-          -p.normalMass * massScale * (vn + bias) - impulseScale * p.normalImpulse;
-      const float total = std::max(p.normalImpulse + impulse, 0.0f);
+    }
+    auto normalVelocity = [&](const ConstraintPoint& p) {
+      return dot((vB + cross(wB, p.rB)) - (vA + cross(wA, p.rA)), n);
+    };
+    auto setImpulse = [&](ConstraintPoint& p, float total) {
       const float applied = total - p.normalImpulse;
       p.normalImpulse = total;
       p.maxNormalImpulse = std::max(p.maxNormalImpulse, applied);
-      const Vec2 P = applied * n;
-      applyImpulse(cc, p, P, vA, wA, vB, wB);
+      applyImpulse(cc, p, applied * n, vA, wA, vB, wB);
+    };
+    if (cc.pointCount == 2 && cc.blockSolve && massScale[0] == massScale[1] &&
+        impulseScale[0] == impulseScale[1]) {
+      // Both points at once (a 2x2 linear complementarity problem): solved one after the other,
+      // the first point's impulse turns the body and the second pushes harder, and a tall
+      // stack of boxes, perfectly symmetric, starts to rock. With K the points' coupled
+      // effective mass, the soft update x = (1 - s_i) l - s_m K^-1 (vn + b) is the solution of
+      // (K / s_m)(x - l) + vn + b + (s_i / s_m) K l = r with x >= 0, r >= 0, x r = 0; the four
+      // cases of which points push are tried in turn.
+      ConstraintPoint &p0 = cc.points[0], &p1 = cc.points[1];
+      vn[0] = normalVelocity(p0);
+      vn[1] = normalVelocity(p1);
+      const float l0 = p0.normalImpulse, l1 = p1.normalImpulse;
+      const float inv = 1.0f / massScale[0], si = impulseScale[0] * inv;
+      const float a11 = cc.k11 * inv, a12 = cc.k12 * inv, a22 = cc.k22 * inv;
+      // r = A x + q
+      const float q0 = vn[0] + bias[0] + si * (cc.k11 * l0 + cc.k12 * l1) - (a11 * l0 + a12 * l1);
+      const float q1 = vn[1] + bias[1] + si * (cc.k12 * l0 + cc.k22 * l1) - (a12 * l0 + a22 * l1);
+      const float det = a11 * a22 - a12 * a12;
+      float x0 = (a12 * q1 - a22 * q0) / det, x1 = (a12 * q0 - a11 * q1) / det;
+      bool solved = x0 >= 0.0f && x1 >= 0.0f;
+      if (!solved) {  // only the first point pushes
+        x0 = -q0 / a11;
+        x1 = 0.0f;
+        solved = x0 >= 0.0f && a12 * x0 + q1 >= 0.0f;
+      }
+      if (!solved) {  // only the second
+        x0 = 0.0f;
+        x1 = -q1 / a22;
+        solved = x1 >= 0.0f && a12 * x1 + q0 >= 0.0f;
+      }
+      if (!solved) {  // neither
+        x0 = x1 = 0.0f;
+        solved = q0 >= 0.0f && q1 >= 0.0f;
+      }
+      if (solved) {
+        setImpulse(p0, x0);
+        setImpulse(p1, x1);
+      } else {
+        // Rounding left no case standing: the points one after the other, as below.
+        for (int k = 0; k < 2; ++k) {
+          ConstraintPoint& p = cc.points[k];
+          const float total = std::max(
+              p.normalImpulse - p.normalMass * massScale[k] * (normalVelocity(p) + bias[k]) -
+                  impulseScale[k] * p.normalImpulse,
+              0.0f);
+          setImpulse(p, total);
+        }
+      }
+    } else {
+      for (int k = 0; k < cc.pointCount; ++k) {
+        ConstraintPoint& p = cc.points[k];
+        const float impulse = -p.normalMass * massScale[k] * (normalVelocity(p) + bias[k]) -
+                              impulseScale[k] * p.normalImpulse;
+        setImpulse(p, std::max(p.normalImpulse + impulse, 0.0f));
+      }
     }
     // Coulomb friction, bounded by each point's normal impulse.
     const Vec2 t = rightPerp(n);
@@ -732,6 +791,18 @@ void World::solve(float dt) {
       p.maxNormalImpulse = 0.0f;
       const Vec2 dv = (vB + cross(wB, p.rB)) - (vA + cross(wA, p.rA));
       p.relativeVelocity = dot(dv, cc.normal);
+    }
+    if (cc.pointCount == 2) {
+      // The points' coupled effective mass, and whether it is well conditioned enough to solve
+      // both at once (two points nearly on top of each other make it singular).
+      const ConstraintPoint &p0 = cc.points[0], &p1 = cc.points[1];
+      const float rn0A = cross(p0.rA, cc.normal), rn0B = cross(p0.rB, cc.normal);
+      const float rn1A = cross(p1.rA, cc.normal), rn1B = cross(p1.rB, cc.normal);
+      const float m = cc.invMassA + cc.invMassB;
+      cc.k11 = m + cc.invIA * rn0A * rn0A + cc.invIB * rn0B * rn0B;
+      cc.k22 = m + cc.invIA * rn1A * rn1A + cc.invIB * rn1B * rn1B;
+      cc.k12 = m + cc.invIA * rn0A * rn1A + cc.invIB * rn0B * rn1B;
+      cc.blockSolve = cc.k11 * cc.k11 < 1000.0f * (cc.k11 * cc.k22 - cc.k12 * cc.k12);
     }
     constraints_.push_back(cc);
   }

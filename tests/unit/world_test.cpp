@@ -290,6 +290,101 @@ TEST(World, FreeBodiesFollowTheIntegratorExactly) {
   }
 }
 
+// Random piles in a bin: circles, boxes, capsules and polygons with restitution up to 1 and any
+// friction, dropped from rest without overlap. Contacts may only take energy out: over 3000
+// steps the total (kinetic plus potential above the floor) never exceeds 1.001 times the start.
+TEST(World, EnergyNeverRises) {
+  for (std::uint64_t seed : {31u, 32u}) {
+    rc::Random rng(seed);
+    rc::World w;
+    rc::BodyDef binDef;
+    BodyId bin = w.createBody(binDef);
+    w.createShape(bin, rc::makeBox(10, 0.5f, {0, -0.5f}));  // floor top at y = 0
+    w.createShape(bin, rc::makeBox(0.5f, 15, {-10.5f, 15}));
+    w.createShape(bin, rc::makeBox(0.5f, 15, {10.5f, 15}));
+    for (int i = 0; i < 60; ++i) {
+      // A grid of 1.6 m cells: the shapes (at most 1.4 m across) never start overlapping.
+      const Vec2 p{-8.0f + 1.6f * static_cast<float>(i % 10),
+                   1.0f + 1.6f * static_cast<float>(i / 10)};
+      BodyId b = w.createBody(dynamicAt(p, rng.uniform(-3, 3)));
+      rc::ShapeDef sd;
+      sd.restitution = rng.uniform();
+      sd.friction = rng.uniform();
+      switch (rng.below(4)) {
+        case 0:
+          w.createShape(b, rc::makeCircle({}, rng.uniform(0.2f, 0.7f)), sd);
+          break;
+        case 1:
+          w.createShape(b, rc::makeBox(rng.uniform(0.2f, 0.5f), rng.uniform(0.2f, 0.5f)), sd);
+          break;
+        case 2:
+          w.createShape(b, rc::makeCapsule({-0.3f, 0}, {0.3f, 0}, rng.uniform(0.1f, 0.35f)), sd);
+          break;
+        default: {
+          const Vec2 pts[] = {{-0.5f, -0.4f}, {0.5f, -0.3f}, {0.3f, 0.5f}, {-0.4f, 0.3f}};
+          w.createShape(b, rc::makePolygon(pts), sd);
+        }
+      }
+    }
+    const double start = w.energy();
+    double highest = start;
+    for (int i = 0; i < 3000; ++i) {
+      w.step(1.0f / 60.0f);
+      highest = std::max(highest, w.energy());
+    }
+    std::printf("seed %llu: start %.3f J, highest %.3f J (%.6f), end %.3f J\n",
+                static_cast<unsigned long long>(seed), start, highest, highest / start, w.energy());
+    EXPECT_LE(highest, 1.001 * start) << seed;
+    EXPECT_LT(w.energy(), start) << seed;
+  }
+}
+
+// Box2D's vertical stack: 15 boxes of 1 m on the ground stand upright.
+TEST(World, VerticalStackStands) {
+  rc::World w;
+  ground(w);
+  std::vector<BodyId> boxes;
+  for (int i = 0; i < 15; ++i) {
+    BodyId b = w.createBody(dynamicAt({0, 0.5f + 1.0f * static_cast<float>(i)}));
+    w.createShape(b, rc::makeBox(0.5f, 0.5f));
+    boxes.push_back(b);
+  }
+  for (int i = 0; i < 600; ++i)
+    w.step(1.0f / 60.0f);
+  const Vec2 top = w.position(boxes.back());
+  std::printf("top box at (%.4f, %.4f), exact 14.5\n", top.x, top.y);
+  EXPECT_NEAR(top.x, 0.0f, 0.01f);
+  EXPECT_NEAR(top.y, 14.5f, 0.05f);
+  for (BodyId b : boxes)
+    EXPECT_LT(rc::length(w.linearVelocity(b)), 0.01f);
+}
+
+// A pyramid of 210 touching 1 m boxes (base 20, friction 0.6) stays up, its top within 5 cm of
+// its exact resting height (19.5 m) after 10 s. (Base 40 is in the world benchmark.)
+TEST(World, PyramidStaysUp) {
+  rc::World w;
+  rc::BodyDef groundDef;
+  groundDef.position = {0, -1};
+  BodyId g = w.createBody(groundDef);
+  w.createShape(g, rc::makeBox(100, 1));
+  BodyId top;
+  const int base = 20;
+  for (int row = 0; row < base; ++row)
+    for (int i = 0; i < base - row; ++i) {
+      top =
+          w.createBody(dynamicAt({static_cast<float>(i) - 0.5f * static_cast<float>(base - row - 1),
+                                  0.5f + static_cast<float>(row)}));
+      w.createShape(top, rc::makeBox(0.5f, 0.5f));
+    }
+  for (int i = 0; i < 600; ++i)
+    w.step(1.0f / 60.0f);
+  const Vec2 p = w.position(top);
+  std::printf("pyramid top at (%.4f, %.4f), exact (0, 19.5)\n", p.x, p.y);
+  EXPECT_NEAR(p.y, 19.5f, 0.05f);
+  EXPECT_NEAR(p.x, 0.0f, 0.05f);
+  EXPECT_LT(rc::length(w.linearVelocity(top)), 0.01f);
+}
+
 std::uint64_t pileHash() {
   rc::World w;
   ground(w);

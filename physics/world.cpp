@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "physics/collide.h"
+#include "physics/toi.h"
 
 namespace rc {
 namespace {
@@ -438,6 +439,9 @@ void World::step(float dt) {
     throw std::invalid_argument("world: step dt must be finite and > 0, got " + std::to_string(dt));
   const auto start = Clock::now();
   auto t = start;
+  events_.begin.clear();
+  events_.end.clear();
+  events_.hit.clear();
   // Bodies new or changed since the last step: proxies stretched along this step's motion.
   std::sort(pendingRefit_.begin(), pendingRefit_.end());
   pendingRefit_.erase(std::unique(pendingRefit_.begin(), pendingRefit_.end()), pendingRefit_.end());
@@ -504,6 +508,8 @@ void World::updatePairs() {
 }
 
 void World::destroyContact(std::size_t index) {
+  if (contacts_[index].touching)
+    events_.end.push_back({shapeId(contacts_[index].shapeA), shapeId(contacts_[index].shapeB)});
   contactIndex_.erase(pairKey(contacts_[index].shapeA, contacts_[index].shapeB));
   if (index + 1 != contacts_.size()) {
     contacts_[index] = contacts_.back();
@@ -550,7 +556,26 @@ void World::narrowphase(float dt) {
           c.tangentImpulse[k] = oldTangent[j];
         }
     }
+    const bool was = c.touching;
     c.touching = c.manifold.pointCount > 0;
+    if (c.touching && !was) {
+      // How fast the surfaces close at the first point, from the velocities before the solve.
+      const ManifoldPoint& mp = c.manifold.points[0];
+      const Body& a = bodies_[static_cast<std::size_t>(ra.body)];
+      const Body& b = bodies_[static_cast<std::size_t>(rb.body)];
+      auto pointVelocity = [&](const Body& body) {
+        if (body.slot < 0) return Vec2{};
+        const auto k = 3 * static_cast<std::size_t>(body.slot);
+        return Vec2{v_[k], v_[k + 1]} + cross(v_[k + 2], mp.point - center(body));
+      };
+      const float approach = -dot(pointVelocity(b) - pointVelocity(a), c.manifold.normal);
+      const ShapeId idA = shapeId(c.shapeA), idB = shapeId(c.shapeB);
+      events_.begin.push_back({idA, idB, mp.point, c.manifold.normal, approach});
+      if (approach > def_.hitEventThreshold)
+        events_.hit.push_back({idA, idB, mp.point, c.manifold.normal, approach});
+    } else if (!c.touching && was) {
+      events_.end.push_back({shapeId(c.shapeA), shapeId(c.shapeB)});
+    }
   }
 }
 
@@ -870,6 +895,105 @@ void World::solve(float dt) {
       c.tangentImpulse[k] = cc.points[k].tangentImpulse;
     }
   }
+}
+
+// ---------------------------------------------------------------------------------- queries
+
+const World::ShapeRecord& World::shapeRecord(ShapeId id) const {
+  if (id.index < 0 || static_cast<std::size_t>(id.index) >= shapes_.size() ||
+      !shapes_[static_cast<std::size_t>(id.index)].alive ||
+      shapes_[static_cast<std::size_t>(id.index)].generation != id.generation)
+    throw std::invalid_argument("world: shape " + std::to_string(id.index) + " does not exist");
+  return shapes_[static_cast<std::size_t>(id.index)];
+}
+
+BodyId World::bodyOf(ShapeId shape) const {
+  const ShapeRecord& r = shapeRecord(shape);
+  return {r.body, bodies_[static_cast<std::size_t>(r.body)].generation};
+}
+
+template <class Exact>
+std::optional<WorldHit> World::closest(const RayCastInput& in, float radius, ProxyFilter filter,
+                                       Exact&& exact) const {
+  const ProxyHit h = castClosest(broadphase_, in, radius, filter, exact);
+  if (!h.out.hit) return std::nullopt;
+  const auto index = static_cast<std::int32_t>(broadphase_.userData(h.id));
+  return WorldHit{shapeId(index), bodyOf(shapeId(index)), h.out.point, h.out.normal,
+                  h.out.fraction};
+}
+
+namespace {
+void checkCast(const char* what, Vec2 origin, Vec2 translation) {
+  requireFinite(what, "origin", origin);
+  requireFinite(what, "translation", translation);
+}
+}  // namespace
+
+std::optional<WorldHit> World::castRay(Vec2 origin, Vec2 translation, ProxyFilter filter) const {
+  checkCast("castRay", origin, translation);
+  const RayCastInput in{origin, translation, 1.0f};
+  return closest(in, 0.0f, filter, [&](ProxyId id, const RayCastInput& ray) {
+    const ShapeRecord& r = shapes_[broadphase_.userData(id)];
+    if (r.isSensor) return CastOutput{};
+    return rayCast(r.shape, bodies_[static_cast<std::size_t>(r.body)].xf, ray);
+  });
+}
+
+std::vector<WorldHit> World::castRayAll(Vec2 origin, Vec2 translation, ProxyFilter filter) const {
+  checkCast("castRayAll", origin, translation);
+  const RayCastInput in{origin, translation, 1.0f};
+  std::vector<WorldHit> out;
+  for (const ProxyHit& h :
+       castAll(broadphase_, in, 0.0f, filter, [&](ProxyId id, const RayCastInput&ray) {
+         const ShapeRecord& r = shapes_[broadphase_.userData(id)];
+         if (r.isSensor) return CastOutput{};
+         return rayCast(r.shape, bodies_[static_cast<std::size_t>(r.body)].xf, ray);
+       })) {
+    const auto index = static_cast<std::int32_t>(broadphase_.userData(h.id));
+    out.push_back(
+        {shapeId(index), bodyOf(shapeId(index)), h.out.point, h.out.normal, h.out.fraction});
+  }
+  return out;
+}
+
+std::optional<WorldHit> World::castCircle(Vec2 center, float radius, Vec2 translation,
+                                          ProxyFilter filter) const {
+  checkCast("castCircle", center, translation);
+  if (!(radius > 0.0f) || !std::isfinite(radius))
+    fail("castCircle", "radius", "is " + std::to_string(radius) + " (must be > 0)");
+  const RayCastInput in{center, translation, 1.0f};
+  const ShapeProxy disc = makeProxy(&center, 1, radius);
+  return closest(in, radius, filter, [&](ProxyId id, const RayCastInput&) {
+    const ShapeRecord& r = shapes_[broadphase_.userData(id)];
+    if (r.isSensor) return CastOutput{};
+    return shapeCast(disc, Transform{}, translation, makeProxy(r.shape),
+                     bodies_[static_cast<std::size_t>(r.body)].xf);
+  });
+}
+
+std::vector<ShapeId> World::overlapAABB(const AABB& box, ProxyFilter filter) const {
+  std::vector<ShapeId> out;
+  for (ProxyId id : broadphase_.queryAABB(box, filter)) {
+    const auto index = static_cast<std::int32_t>(broadphase_.userData(id));
+    const ShapeRecord& r = shapes_[static_cast<std::size_t>(index)];
+    if (overlaps(computeAABB(r.shape, bodies_[static_cast<std::size_t>(r.body)].xf), box))
+      out.push_back(shapeId(index));
+  }
+  std::sort(out.begin(), out.end(), [](ShapeId a, ShapeId b) { return a.index < b.index; });
+  return out;
+}
+
+std::vector<ShapeId> World::overlapPoint(Vec2 point, ProxyFilter filter) const {
+  requireFinite("overlapPoint", "point", point);
+  std::vector<ShapeId> out;
+  for (ProxyId id : broadphase_.queryPoint(point, filter)) {
+    const auto index = static_cast<std::int32_t>(broadphase_.userData(id));
+    const ShapeRecord& r = shapes_[static_cast<std::size_t>(index)];
+    if (containsPoint(r.shape, bodies_[static_cast<std::size_t>(r.body)].xf, point))
+      out.push_back(shapeId(index));
+  }
+  std::sort(out.begin(), out.end(), [](ShapeId a, ShapeId b) { return a.index < b.index; });
+  return out;
 }
 
 }  // namespace rc

@@ -39,6 +39,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -99,6 +100,8 @@ struct WorldDef {
   int substeps = 4;
   // Approach speeds below this bounce with no restitution (m/s).
   float restitutionThreshold = 1.0f;
+  // Contacts that begin closing faster than this report a hit event (m/s).
+  float hitEventThreshold = 1.0f;
   // Contact stiffness in Hz, capped at a quarter of the substep rate; damping ratio.
   float contactHertz = 30.0f;
   float contactDampingRatio = 10.0f;
@@ -110,6 +113,38 @@ struct WorldDef {
   bool continuous = true;
   // The region most bodies live in: the quadtree's world square. Bodies outside it still work.
   AABB bounds{{-512.0f, -512.0f}, {512.0f, 512.0f}};
+};
+
+// What a world query hit.
+struct WorldHit {
+  ShapeId shape;
+  BodyId body;
+  Vec2 point{};   // world frame
+  Vec2 normal{};  // surface normal of the shape hit
+  float fraction = 0.0f;
+};
+
+// Events of the last step, read after it (cleared at the start of the next). A contact begins
+// when its manifold gets points: within the speculative margin, which for a fast body can be
+// the step before the surfaces meet; approachSpeed is measured then, before the solve.
+struct ContactBeginEvent {
+  ShapeId shapeA, shapeB;
+  Vec2 point{}, normal{};   // normal from A to B
+  float approachSpeed = 0;  // along the normal, positive when closing
+};
+struct ContactEndEvent {
+  ShapeId shapeA, shapeB;
+};
+// A contact that began (or was hit again) faster than WorldDef::hitEventThreshold.
+struct ContactHitEvent {
+  ShapeId shapeA, shapeB;
+  Vec2 point{}, normal{};
+  float approachSpeed = 0;
+};
+struct ContactEvents {
+  std::vector<ContactBeginEvent> begin;
+  std::vector<ContactEndEvent> end;
+  std::vector<ContactHitEvent> hit;
 };
 
 // Wall-clock milliseconds of the last step, by phase.
@@ -179,6 +214,21 @@ class World {
   void applyTorque(BodyId id, float torque);
   void applyLinearImpulse(BodyId id, Vec2 impulse, Vec2 worldPoint);
   void applyAngularImpulse(BodyId id, float impulse);
+
+  // Queries. Rays and casts go along origin + t * translation, t in [0, 1]; the closest hit
+  // (ties to the lower shape id) or every hit sorted by fraction, then shape id. Sensors are
+  // skipped. A ray starting inside a solid shape hits it at fraction 0 (see raycast.h).
+  std::optional<WorldHit> castRay(Vec2 origin, Vec2 translation, ProxyFilter filter = {}) const;
+  std::vector<WorldHit> castRayAll(Vec2 origin, Vec2 translation, ProxyFilter filter = {}) const;
+  // A circle swept along the translation (bullets with a size, a character's movement).
+  std::optional<WorldHit> castCircle(Vec2 center, float radius, Vec2 translation,
+                                     ProxyFilter filter = {}) const;
+  // Shapes whose AABB overlaps the box, or that contain the point; sorted by shape id.
+  std::vector<ShapeId> overlapAABB(const AABB& box, ProxyFilter filter = {}) const;
+  std::vector<ShapeId> overlapPoint(Vec2 point, ProxyFilter filter = {}) const;
+  BodyId bodyOf(ShapeId shape) const;
+
+  const ContactEvents& contactEvents() const { return events_; }
 
   // A user force evaluated at every integrator stage (springs, drag, attractors).
   void addForceField(ForceField field) { fields_.push_back(std::move(field)); }
@@ -255,6 +305,13 @@ class World {
   };
 
   std::size_t checked(BodyId id) const;
+  const ShapeRecord& shapeRecord(ShapeId id) const;
+  ShapeId shapeId(std::int32_t index) const {
+    return {index, shapes_[static_cast<std::size_t>(index)].generation};
+  }
+  template <class Exact>
+  std::optional<WorldHit> closest(const RayCastInput& in, float radius, ProxyFilter filter,
+                                  Exact&& exact) const;
   Body& body(BodyId id) { return bodies_[checked(id)]; }
   const Body& body(BodyId id) const { return bodies_[checked(id)]; }
   Vec2 center(const Body& b) const;
@@ -296,6 +353,7 @@ class World {
   std::vector<Rot> deltaRotation_;
   std::vector<float> startAngle_;
   std::vector<Vec2> startCenter_;
+  ContactEvents events_;
   // Contacts by their shape pair, for finding whether a new proxy pair already has one.
   std::unordered_map<std::uint64_t, std::int32_t> contactIndex_;
   Profile profile_;

@@ -929,14 +929,17 @@ void checkCast(const char* what, Vec2 origin, Vec2 translation) {
 }
 }  // namespace
 
+CastOutput World::rayAgainst(ProxyId proxy, const RayCastInput& ray) const {
+  const ShapeRecord& r = shapes_[broadphase_.userData(proxy)];
+  if (r.isSensor) return {};
+  return rayCast(r.shape, bodies_[static_cast<std::size_t>(r.body)].xf, ray);
+}
+
 std::optional<WorldHit> World::castRay(Vec2 origin, Vec2 translation, ProxyFilter filter) const {
   checkCast("castRay", origin, translation);
   const RayCastInput in{origin, translation, 1.0f};
-  return closest(in, 0.0f, filter, [&](ProxyId id, const RayCastInput& ray) {
-    const ShapeRecord& r = shapes_[broadphase_.userData(id)];
-    if (r.isSensor) return CastOutput{};
-    return rayCast(r.shape, bodies_[static_cast<std::size_t>(r.body)].xf, ray);
-  });
+  return closest(in, 0.0f, filter,
+                 [this](ProxyId id, const RayCastInput& ray) { return rayAgainst(id, ray); });
 }
 
 std::vector<WorldHit> World::castRayAll(Vec2 origin, Vec2 translation, ProxyFilter filter) const {
@@ -944,11 +947,8 @@ std::vector<WorldHit> World::castRayAll(Vec2 origin, Vec2 translation, ProxyFilt
   const RayCastInput in{origin, translation, 1.0f};
   std::vector<WorldHit> out;
   for (const ProxyHit& h :
-       castAll(broadphase_, in, 0.0f, filter, [&](ProxyId id, const RayCastInput&ray) {
-         const ShapeRecord& r = shapes_[broadphase_.userData(id)];
-         if (r.isSensor) return CastOutput{};
-         return rayCast(r.shape, bodies_[static_cast<std::size_t>(r.body)].xf, ray);
-       })) {
+       castAll(broadphase_, in, 0.0f, filter,
+               [this](ProxyId id, const RayCastInput&ray) { return rayAgainst(id, ray); })) {
     const auto index = static_cast<std::int32_t>(broadphase_.userData(h.id));
     out.push_back(
         {shapeId(index), bodyOf(shapeId(index)), h.out.point, h.out.normal, h.out.fraction});

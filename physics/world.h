@@ -309,6 +309,7 @@ class World {
   ShapeId shapeId(std::int32_t index) const {
     return {index, shapes_[static_cast<std::size_t>(index)].generation};
   }
+  CastOutput rayAgainst(ProxyId proxy, const RayCastInput& ray) const;
   template <class Exact>
   std::optional<WorldHit> closest(const RayCastInput& in, float radius, ProxyFilter filter,
                                   Exact&& exact) const;

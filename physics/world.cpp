@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "physics/collide.h"
 #include "physics/toi.h"
@@ -30,6 +31,30 @@ void requireFinite(const char* what, const char* field, Vec2 v) {
 void requireNonNegative(const char* what, const char* field, float v) {
   requireFinite(what, field, v);
   if (v < 0.0f) fail(what, field, "is " + std::to_string(v) + " (must be >= 0)");
+}
+
+// Half the thinnest width of a shape: it cannot pass through anything while it moves less than
+// this per step. (The polygon's value is its inscribed radius about the centroid, a lower
+// bound.)
+float thickness(const Shape& s) {
+  switch (s.type) {
+    case ShapeType::circle:
+      return s.circle.radius;
+    case ShapeType::box:
+      return std::min(s.box.halfExtents.x, s.box.halfExtents.y);
+    case ShapeType::capsule:
+      return s.capsule.radius;
+    case ShapeType::polygon: {
+      float r = std::numeric_limits<float>::max();
+      for (int i = 0; i < s.polygon.count; ++i)
+        r = std::min(r, dot(s.polygon.normals[i], s.polygon.vertices[i] - s.polygon.centroid));
+      return r + s.polygon.radius;
+    }
+    case ShapeType::segment:
+    case ShapeType::chainSegment:
+      return 0.0f;
+  }
+  return 0.0f;
 }
 
 std::uint64_t pairKey(std::int32_t a, std::int32_t b) {
@@ -250,6 +275,15 @@ ShapeId World::createShape(BodyId bodyId, const Shape& shape, const ShapeDef& de
 
 void World::updateMass(Body& b) {
   b.mass = b.invMass = b.inertia = b.invInertia = 0.0f;
+  // Extents for continuous collision: the thinnest shape's half-thickness (a lower bound),
+  // and the farthest reach from the body origin.
+  b.minExtent = std::numeric_limits<float>::max();
+  b.maxExtent = 0.0f;
+  for (std::int32_t s : b.shapes) {
+    const ShapeRecord& r = shapes_[static_cast<std::size_t>(s)];
+    b.minExtent = std::min(b.minExtent, thickness(r.shape));
+    b.maxExtent = std::max(b.maxExtent, length(r.bound.center) + r.bound.radius);
+  }
   if (b.type != BodyType::dynamicBody) {
     b.localCenter = {};
     return;
@@ -458,6 +492,9 @@ void World::step(float dt) {
   t = Clock::now();
   solve(dt);
   profile_.solve = millisecondsSince(t);
+  t = Clock::now();
+  if (def_.continuous) continuous();
+  profile_.continuous = millisecondsSince(t);
   t = Clock::now();
   // Transforms, AABBs and proxies from the new positions; forces are used up.
   for (std::int32_t index : slotBody_) {
@@ -893,6 +930,51 @@ void World::solve(float dt) {
     for (int k = 0; k < cc.pointCount; ++k) {
       c.normalImpulse[k] = cc.points[k].normalImpulse;
       c.tangentImpulse[k] = cc.points[k].tangentImpulse;
+    }
+  }
+}
+
+// ------------------------------------------------------------------------------- continuous
+
+void World::continuous() {
+  // Speculative contacts cover what was known at the start of the step; a fast body deflected
+  // during the step (by another body, or a bounce) can still reach static geometry it had no
+  // contact with. Such bodies are swept from where they started to where they ended against
+  // the static shapes their path touches, and stopped at the first time of impact (the
+  // speculative contact of the next step then bounces them). Bodies that moved less than half
+  // their smallest extent cannot pass through anything and are skipped.
+  for (std::size_t s = 0; s < slotBody_.size(); ++s) {
+    Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
+    if (b.type != BodyType::dynamicBody || b.shapes.empty()) continue;
+    const std::size_t i = 3 * s;
+    const Vec2 c1 = startCenter_[s], c2{q_[i], q_[i + 1]};
+    const float a1 = startAngle_[s], a2 = q_[i + 2];
+    const float motion = length(c2 - c1) + std::fabs(a2 - a1) * b.maxExtent;
+    if (motion < 0.5f * b.minExtent) continue;
+    const Sweep sweep{b.localCenter, c1, c2, a1, a2};
+    const Transform xf1 = sweepTransform(sweep, 0.0f), xf2 = sweepTransform(sweep, 1.0f);
+    float first = 1.0f;
+    for (std::int32_t own : b.shapes) {
+      const ShapeRecord& mine = shapes_[static_cast<std::size_t>(own)];
+      if (mine.isSensor) continue;
+      const ShapeProxy proxy = makeProxy(mine.shape);
+      const AABB path = unionOf(computeAABB(mine.shape, xf1), computeAABB(mine.shape, xf2));
+      broadphase_.queryAABB(path, broadphase_.filter(mine.proxy), [&](ProxyId other) {
+        const ShapeRecord& r = shapes_[broadphase_.userData(other)];
+        const Body& ob = bodies_[static_cast<std::size_t>(r.body)];
+        if (ob.type != BodyType::staticBody || r.isSensor) return true;
+        const Sweep fixed{{}, ob.xf.p, ob.xf.p, ob.angle, ob.angle};
+        const ToiOutput toi = timeOfImpact(proxy, sweep, makeProxy(r.shape), fixed, first);
+        // Already touching at the start (sliding along a wall): the contact handles it.
+        if (toi.state == ToiState::hit && toi.fraction < first) first = toi.fraction;
+        return true;
+      });
+    }
+    if (first < 1.0f) {
+      const Vec2 c = lerp(c1, c2, first);
+      q_[i] = c.x;
+      q_[i + 1] = c.y;
+      q_[i + 2] = a1 + first * (a2 - a1);
     }
   }
 }

@@ -12,6 +12,8 @@
 //                 integrator (forces evaluated at its stages), warm start, solve contacts (soft),
 //                 positions corrected by the velocity the contacts changed, relax; then
 //                 restitution, and the impulses stored for the next step's warm start
+//   continuous    fast bodies swept against static shapes and stopped at the first time of
+//                 impact (what speculative contacts cannot foresee: a body deflected mid-step)
 //   refit         body transforms, shape AABBs and quadtree proxies updated, each fat AABB
 //                 stretched along the body's next step (its velocity times dt), so the pairs a
 //                 fast body will meet exist before it moves
@@ -149,7 +151,7 @@ struct ContactEvents {
 
 // Wall-clock milliseconds of the last step, by phase.
 struct Profile {
-  double updatePairs = 0, narrowphase = 0, solve = 0, refit = 0, total = 0;
+  double updatePairs = 0, narrowphase = 0, solve = 0, continuous = 0, refit = 0, total = 0;
 };
 
 class World;
@@ -262,6 +264,7 @@ class World {
     float torque = 0;
     float mass = 0, invMass = 0, inertia = 0, invInertia = 0;
     float linearDamping = 0, angularDamping = 0, gravityScale = 1;
+    float minExtent = 0, maxExtent = 0;  // for continuous collision (see continuous())
     std::uint64_t userData = 0;
     std::int32_t slot = -1;  // in q_ and v_; -1 for static bodies
     std::vector<std::int32_t> shapes;
@@ -326,6 +329,7 @@ class World {
   void updatePairs();
   void narrowphase(float dt);
   void solve(float h);
+  void continuous();
   void destroyContact(std::size_t index);
   void accelerations(std::span<const float> q, std::span<const float> v, float t,
                      std::span<float> a);

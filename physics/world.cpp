@@ -714,28 +714,28 @@ void World::solveContacts(float h, bool useBias) {
       // the first point's impulse turns the body and the second pushes harder, and a tall
       // stack of boxes, perfectly symmetric, starts to rock. With K the points' coupled
       // effective mass, the soft update x = (1 - s_i) l - s_m K^-1 (vn + b) is the solution of
-      // (K / s_m)(x - l) + vn + b + (s_i / s_m) K l = r with x >= 0, r >= 0, x r = 0; the four
-      // cases of which points push are tried in turn.
+      // A x + q = r with A = K / s_m, x >= 0, r >= 0, x r = 0; the four cases of which points
+      // push are tried in turn.
       ConstraintPoint &p0 = cc.points[0], &p1 = cc.points[1];
       vn[0] = normalVelocity(p0);
       vn[1] = normalVelocity(p1);
       const float l0 = p0.normalImpulse, l1 = p1.normalImpulse;
-      const float inv = 1.0f / massScale[0], si = impulseScale[0] * inv;
-      const float a11 = cc.k11 * inv, a12 = cc.k12 * inv, a22 = cc.k22 * inv;
-      // r = A x + q
-      const float q0 = vn[0] + bias[0] + si * (cc.k11 * l0 + cc.k12 * l1) - (a11 * l0 + a12 * l1);
-      const float q1 = vn[1] + bias[1] + si * (cc.k12 * l0 + cc.k22 * l1) - (a12 * l0 + a22 * l1);
-      const float det = a11 * a22 - a12 * a12;
-      float x0 = (a12 * q1 - a22 * q0) / det, x1 = (a12 * q0 - a11 * q1) / det;
+      // With A = K / s_m: q = vn + b - ((1 - s_i) / s_m) K l, and A^-1 = s_m K^-1 (kept from
+      // the prepare, so the four cases cost no division).
+      const float sm = massScale[0], c = (1.0f - impulseScale[0]) / sm;
+      const float q0 = vn[0] + bias[0] - c * (cc.k11 * l0 + cc.k12 * l1);
+      const float q1 = vn[1] + bias[1] - c * (cc.k12 * l0 + cc.k22 * l1);
+      float x0 = -sm * (cc.i11 * q0 + cc.i12 * q1), x1 = -sm * (cc.i12 * q0 + cc.i22 * q1);
+      const float a12 = cc.k12 / sm;
       bool solved = x0 >= 0.0f && x1 >= 0.0f;
       if (!solved) {  // only the first point pushes
-        x0 = -q0 / a11;
+        x0 = -sm * p0.normalMass * q0;
         x1 = 0.0f;
         solved = x0 >= 0.0f && a12 * x0 + q1 >= 0.0f;
       }
       if (!solved) {  // only the second
         x0 = 0.0f;
-        x1 = -q1 / a22;
+        x1 = -sm * p1.normalMass * q1;
         solved = x1 >= 0.0f && a12 * x1 + q0 >= 0.0f;
       }
       if (!solved) {  // neither
@@ -864,7 +864,13 @@ void World::solve(float dt) {
       cc.k11 = m + cc.invIA * rn0A * rn0A + cc.invIB * rn0B * rn0B;
       cc.k22 = m + cc.invIA * rn1A * rn1A + cc.invIB * rn1B * rn1B;
       cc.k12 = m + cc.invIA * rn0A * rn1A + cc.invIB * rn0B * rn1B;
-      cc.blockSolve = cc.k11 * cc.k11 < 1000.0f * (cc.k11 * cc.k22 - cc.k12 * cc.k12);
+      const float det = cc.k11 * cc.k22 - cc.k12 * cc.k12;
+      cc.blockSolve = cc.k11 * cc.k11 < 1000.0f * det;
+      if (cc.blockSolve) {
+        cc.i11 = cc.k22 / det;
+        cc.i12 = -cc.k12 / det;
+        cc.i22 = cc.k11 / det;
+      }
     }
     constraints_.push_back(cc);
   }

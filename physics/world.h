@@ -302,7 +302,8 @@ class World {
     Vec2 normal;
     float friction, restitution;
     int pointCount;
-    float k11 = 0, k12 = 0, k22 = 0;  // two points' coupled effective mass
+    float k11 = 0, k12 = 0, k22 = 0;  // two points' coupled effective mass K
+    float i11 = 0, i12 = 0, i22 = 0;  // and its inverse
     bool blockSolve = false;
     ConstraintPoint points[2];
   };

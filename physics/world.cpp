@@ -184,6 +184,7 @@ BodyId World::createBody(const BodyDef& def) {
   b.gravityScale = def.gravityScale;
   b.fixedRotation = def.fixedRotation;
   b.bullet = def.bullet;
+  b.allowSleep = def.allowSleep;
   b.userData = def.userData;
   if (def.type != BodyType::staticBody) {
     b.slot = static_cast<std::int32_t>(slotBody_.size());
@@ -191,6 +192,9 @@ BodyId World::createBody(const BodyDef& def) {
     q_.insert(q_.end(), {def.position.x, def.position.y, def.angle});
     const float w = def.fixedRotation ? 0.0f : def.angularVelocity;
     v_.insert(v_.end(), {def.linearVelocity.x, def.linearVelocity.y, w});
+    // Into the awake slots, before the sleeping ones.
+    swapSlots(b.slot, awakeCount_);
+    ++awakeCount_;
   }
   updateMass(b);
   if (b.slot >= 0) pendingRefit_.push_back(index);
@@ -201,12 +205,15 @@ BodyId World::createBody(const BodyDef& def) {
 void World::destroyBody(BodyId id) {
   const std::size_t index = checked(id);
   Body& b = bodies_[index];
-  // Its contacts first (back to front: removal swaps the last contact in).
+  wakeBody(b);
+  // Its contacts (back to front: removal swaps the last contact in); what it touched wakes.
   for (std::size_t c = contacts_.size(); c-- > 0;) {
     const Contact& k = contacts_[c];
-    if (shapes_[static_cast<std::size_t>(k.shapeA)].body == id.index ||
-        shapes_[static_cast<std::size_t>(k.shapeB)].body == id.index)
-      destroyContact(c);
+    const std::int32_t bodyA = shapes_[static_cast<std::size_t>(k.shapeA)].body;
+    const std::int32_t bodyB = shapes_[static_cast<std::size_t>(k.shapeB)].body;
+    if (bodyA != id.index && bodyB != id.index) continue;
+    if (k.touching) wakeBody(bodies_[static_cast<std::size_t>(bodyA == id.index ? bodyB : bodyA)]);
+    destroyContact(c);
   }
   for (std::int32_t s : b.shapes) {
     ShapeRecord& r = shapes_[static_cast<std::size_t>(s)];
@@ -214,15 +221,10 @@ void World::destroyBody(BodyId id) {
     r.alive = false;
   }
   if (b.slot >= 0) {
-    // The last slot moves into this one.
-    const auto from = 3 * (slotBody_.size() - 1), to = 3 * static_cast<std::size_t>(b.slot);
-    for (int k = 0; k < 3; ++k) {
-      q_[to + static_cast<std::size_t>(k)] = q_[from + static_cast<std::size_t>(k)];
-      v_[to + static_cast<std::size_t>(k)] = v_[from + static_cast<std::size_t>(k)];
-    }
-    const std::int32_t moved = slotBody_.back();
-    slotBody_[static_cast<std::size_t>(b.slot)] = moved;
-    bodies_[static_cast<std::size_t>(moved)].slot = b.slot;
+    // To the end of the awake slots, then to the very end, then gone.
+    swapSlots(b.slot, awakeCount_ - 1);
+    swapSlots(b.slot, static_cast<std::int32_t>(slotBody_.size()) - 1);
+    --awakeCount_;
     slotBody_.pop_back();
     q_.resize(q_.size() - 3);
     v_.resize(v_.size() - 3);
@@ -231,6 +233,126 @@ void World::destroyBody(BodyId id) {
   b.shapes.clear();
   freeBodies_.push_back(id.index);
   --bodyCount_;
+}
+
+void World::swapSlots(std::int32_t a, std::int32_t b) {
+  if (a == b) return;
+  const auto ia = 3 * static_cast<std::size_t>(a), ib = 3 * static_cast<std::size_t>(b);
+  for (std::size_t k = 0; k < 3; ++k) {
+    std::swap(q_[ia + k], q_[ib + k]);
+    std::swap(v_[ia + k], v_[ib + k]);
+  }
+  std::swap(slotBody_[static_cast<std::size_t>(a)], slotBody_[static_cast<std::size_t>(b)]);
+  bodies_[static_cast<std::size_t>(slotBody_[static_cast<std::size_t>(a)])].slot = a;
+  bodies_[static_cast<std::size_t>(slotBody_[static_cast<std::size_t>(b)])].slot = b;
+}
+
+void World::wakeBody(Body& b) {
+  b.sleepTime = 0.0f;
+  if (b.island < 0) return;
+  const std::int32_t island = b.island;
+  for (std::int32_t index : islands_[static_cast<std::size_t>(island)]) {
+    Body& m = bodies_[static_cast<std::size_t>(index)];
+    m.island = -1;
+    m.sleepTime = 0.0f;
+    swapSlots(m.slot, awakeCount_);
+    ++awakeCount_;
+  }
+  islands_[static_cast<std::size_t>(island)].clear();
+  freeIslands_.push_back(island);
+}
+
+bool World::isAwake(BodyId id) const {
+  return awake(body(id));
+}
+
+void World::wake(BodyId id) {
+  wakeBody(body(id));
+}
+
+void World::updateSleep(float dt) {
+  const auto n = static_cast<std::size_t>(awakeCount_);
+  const float lin2 = def_.linearSleepTolerance * def_.linearSleepTolerance;
+  const float ang2 = def_.angularSleepTolerance * def_.angularSleepTolerance;
+  // Each awake body's still time; bodies that may not sleep count as never still.
+  for (std::size_t s = 0; s < n; ++s) {
+    Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
+    const float v2 = v_[3 * s] * v_[3 * s] + v_[3 * s + 1] * v_[3 * s + 1];
+    const float w2 = v_[3 * s + 2] * v_[3 * s + 2];
+    const bool still = def_.enableSleep && b.allowSleep && v2 <= lin2 && w2 <= ang2;
+    b.sleepTime = still ? b.sleepTime + dt : 0.0f;
+  }
+  if (!def_.enableSleep) return;
+  // Islands: awake dynamic bodies joined by touching contacts (union-find over slots).
+  islandParent_.resize(n);
+  for (std::size_t s = 0; s < n; ++s)
+    islandParent_[s] = static_cast<std::int32_t>(s);
+  auto root = [&](std::int32_t x) {
+    while (islandParent_[static_cast<std::size_t>(x)] != x) {
+      islandParent_[static_cast<std::size_t>(x)] =
+          islandParent_[static_cast<std::size_t>(islandParent_[static_cast<std::size_t>(x)])];
+      x = islandParent_[static_cast<std::size_t>(x)];
+    }
+    return x;
+  };
+  // An island touching something that moves and cannot join it (a moving kinematic body)
+  // stays awake: its root gets a still time of 0 below.
+  std::vector<float>& still = freeV_;  // reused scratch: the island's shortest still time
+  still.assign(n, std::numeric_limits<float>::max());
+  for (const Contact& c : contacts_) {
+    if (!c.touching) continue;
+    const Body& a =
+        bodies_[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(c.shapeA)].body)];
+    const Body& b =
+        bodies_[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(c.shapeB)].body)];
+    const bool da = a.type == BodyType::dynamicBody && awake(a);
+    const bool db = b.type == BodyType::dynamicBody && awake(b);
+    if (da && db) {
+      islandParent_[static_cast<std::size_t>(root(a.slot))] = root(b.slot);
+    } else if (da != db) {
+      const Body& other = da ? b : a;
+      if (other.type == BodyType::kinematicBody && awake(other)) {
+        const auto k = 3 * static_cast<std::size_t>(other.slot);
+        if (v_[k] != 0.0f || v_[k + 1] != 0.0f || v_[k + 2] != 0.0f)
+          still[static_cast<std::size_t>((da ? a : b).slot)] = 0.0f;
+      }
+    }
+  }
+  for (std::size_t s = 0; s < n; ++s) {
+    const float t = bodies_[static_cast<std::size_t>(slotBody_[s])].sleepTime;
+    const auto r = static_cast<std::size_t>(root(static_cast<std::int32_t>(s)));
+    still[r] = std::min({still[r], still[s], t});
+  }
+  // Islands still long enough go to sleep together, in slot order.
+  std::vector<std::int32_t> sleepers;
+  for (std::size_t s = 0; s < n; ++s)
+    if (still[static_cast<std::size_t>(root(static_cast<std::int32_t>(s)))] >= def_.timeToSleep)
+      sleepers.push_back(slotBody_[s]);
+  if (sleepers.empty()) return;
+  std::vector<std::int32_t> islandOfRoot(n, -1);
+  for (std::int32_t index : sleepers) {
+    Body& b = bodies_[static_cast<std::size_t>(index)];
+    const auto r = static_cast<std::size_t>(root(b.slot));
+    if (islandOfRoot[r] < 0) {
+      if (freeIslands_.empty()) {
+        islandOfRoot[r] = static_cast<std::int32_t>(islands_.size());
+        islands_.emplace_back();
+      } else {
+        islandOfRoot[r] = freeIslands_.back();
+        freeIslands_.pop_back();
+      }
+    }
+    b.island = islandOfRoot[r];
+    islands_[static_cast<std::size_t>(b.island)].push_back(index);
+  }
+  // Out of the awake slots (after the union-find is done with slot numbers), velocities zeroed.
+  for (std::int32_t index : sleepers) {
+    Body& b = bodies_[static_cast<std::size_t>(index)];
+    swapSlots(b.slot, awakeCount_ - 1);
+    --awakeCount_;
+    const auto i = 3 * static_cast<std::size_t>(b.slot);
+    v_[i] = v_[i + 1] = v_[i + 2] = 0.0f;
+  }
 }
 
 ShapeId World::createShape(BodyId bodyId, const Shape& shape, const ShapeDef& def) {
@@ -356,6 +478,7 @@ std::uint64_t World::userData(BodyId id) const {
 
 void World::setLinearVelocity(BodyId id, Vec2 v) {
   Body& b = body(id);
+  wakeBody(b);
   requireFinite("setLinearVelocity", "velocity", v);
   if (b.slot < 0) return;
   const auto i = 3 * static_cast<std::size_t>(b.slot);
@@ -365,12 +488,14 @@ void World::setLinearVelocity(BodyId id, Vec2 v) {
 }
 void World::setAngularVelocity(BodyId id, float w) {
   Body& b = body(id);
+  wakeBody(b);
   requireFinite("setAngularVelocity", "angular velocity", w);
   if (b.slot < 0 || b.fixedRotation) return;
   v_[3 * static_cast<std::size_t>(b.slot) + 2] = w;
 }
 void World::setTransform(BodyId id, Vec2 position, float angle) {
   Body& b = body(id);
+  wakeBody(b);
   requireFinite("setTransform", "position", position);
   requireFinite("setTransform", "angle", angle);
   b.xf = {position, Rot::fromAngle(angle)};
@@ -388,6 +513,7 @@ void World::setTransform(BodyId id, Vec2 position, float angle) {
 
 void World::applyForce(BodyId id, Vec2 force, Vec2 worldPoint) {
   Body& b = body(id);
+  wakeBody(b);
   requireFinite("applyForce", "force", force);
   requireFinite("applyForce", "point", worldPoint);
   if (b.type != BodyType::dynamicBody) return;
@@ -396,16 +522,19 @@ void World::applyForce(BodyId id, Vec2 force, Vec2 worldPoint) {
 }
 void World::applyForceToCenter(BodyId id, Vec2 force) {
   Body& b = body(id);
+  wakeBody(b);
   requireFinite("applyForceToCenter", "force", force);
   if (b.type == BodyType::dynamicBody) b.force += force;
 }
 void World::applyTorque(BodyId id, float torque) {
   Body& b = body(id);
+  wakeBody(b);
   requireFinite("applyTorque", "torque", torque);
   if (b.type == BodyType::dynamicBody) b.torque += torque;
 }
 void World::applyLinearImpulse(BodyId id, Vec2 impulse, Vec2 worldPoint) {
   Body& b = body(id);
+  wakeBody(b);
   requireFinite("applyLinearImpulse", "impulse", impulse);
   requireFinite("applyLinearImpulse", "point", worldPoint);
   if (b.type != BodyType::dynamicBody) return;
@@ -416,6 +545,7 @@ void World::applyLinearImpulse(BodyId id, Vec2 impulse, Vec2 worldPoint) {
 }
 void World::applyAngularImpulse(BodyId id, float impulse) {
   Body& b = body(id);
+  wakeBody(b);
   requireFinite("applyAngularImpulse", "impulse", impulse);
   if (b.type == BodyType::dynamicBody)
     v_[3 * static_cast<std::size_t>(b.slot) + 2] += b.invInertia * impulse;
@@ -497,8 +627,8 @@ void World::step(float dt) {
   profile_.continuous = millisecondsSince(t);
   t = Clock::now();
   // Transforms, AABBs and proxies from the new positions; forces are used up.
-  for (std::int32_t index : slotBody_) {
-    Body& b = bodies_[static_cast<std::size_t>(index)];
+  for (std::size_t s = 0; s < static_cast<std::size_t>(awakeCount_); ++s) {
+    Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
     const auto i = 3 * static_cast<std::size_t>(b.slot);
     b.angle = q_[i + 2];
     b.xf.q = Rot::fromAngle(b.angle);
@@ -508,6 +638,9 @@ void World::step(float dt) {
     refitBody(b, dt * Vec2{v_[i], v_[i + 1]});  // where it goes next step
   }
   profile_.refit = millisecondsSince(t);
+  t = Clock::now();
+  updateSleep(dt);
+  profile_.sleep = millisecondsSince(t);
   profile_.total = millisecondsSince(start);
   time_ += dt;
 }
@@ -571,6 +704,10 @@ void World::narrowphase(float dt) {
     Contact& c = contacts_[i];
     const ShapeRecord& ra = shapes_[static_cast<std::size_t>(c.shapeA)];
     const ShapeRecord& rb = shapes_[static_cast<std::size_t>(c.shapeB)];
+    Body& bodyA = bodies_[static_cast<std::size_t>(ra.body)];
+    Body& bodyB = bodies_[static_cast<std::size_t>(rb.body)];
+    // Nothing awake on either side: the contact is as it was when they fell asleep.
+    if (!awake(bodyA) && !awake(bodyB)) continue;
     if (!overlaps(broadphase_.fatAABB(ra.proxy), broadphase_.fatAABB(rb.proxy))) {
       destroyContact(i);
       continue;
@@ -595,6 +732,11 @@ void World::narrowphase(float dt) {
     }
     const bool was = c.touching;
     c.touching = c.manifold.pointCount > 0;
+    // Touching something awake wakes a sleeping body's island.
+    if (c.touching) {
+      if (bodyA.island >= 0) wakeBody(bodyA);
+      if (bodyB.island >= 0) wakeBody(bodyB);
+    }
     if (c.touching && !was) {
       // How fast the surfaces close at the first point, from the velocities before the solve.
       const ManifoldPoint& mp = c.manifold.points[0];
@@ -634,7 +776,7 @@ void applyImpulse(const Constraint& cc, const Point& p, Vec2 P, Vec2& vA, float&
 
 void World::accelerations(std::span<const float> q, std::span<const float> v, float t,
                           std::span<float> a) {
-  for (std::size_t s = 0; s < slotBody_.size(); ++s) {
+  for (std::size_t s = 0; s < static_cast<std::size_t>(awakeCount_); ++s) {
     const Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
     const std::size_t i = 3 * s;
     if (b.type != BodyType::dynamicBody) {
@@ -803,7 +945,7 @@ void World::applyRestitution() {
 }
 
 void World::solve(float dt) {
-  const std::size_t slots = slotBody_.size();
+  const auto slots = static_cast<std::size_t>(awakeCount_);
   // Prepare: one constraint per touching contact, anchors from the centres of mass.
   constraints_.clear();
   for (std::size_t ci = 0; ci < contacts_.size(); ++ci) {
@@ -815,8 +957,9 @@ void World::solve(float dt) {
         bodies_[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(c.shapeB)].body)];
     ContactConstraint cc;
     cc.contact = static_cast<std::int32_t>(ci);
-    cc.slotA = a.type == BodyType::dynamicBody || a.type == BodyType::kinematicBody ? a.slot : -1;
-    cc.slotB = b.type == BodyType::dynamicBody || b.type == BodyType::kinematicBody ? b.slot : -1;
+    cc.slotA = awake(a) ? a.slot : -1;
+    cc.slotB = awake(b) ? b.slot : -1;
+    if (cc.slotA < 0 && cc.slotB < 0) continue;  // asleep against asleep or static
     cc.invMassA = a.invMass;
     cc.invIA = a.invInertia;
     cc.invMassB = b.invMass;
@@ -890,7 +1033,8 @@ void World::solve(float dt) {
   for (int sub = 0; sub < def_.substeps; ++sub) {
     const float t = static_cast<float>(time_) + static_cast<float>(sub) * h;
     // Free motion by the world's integrator, then damping (implicit, unconditionally stable).
-    integrate<float>(def_.integrator, q_, v_, t, h, accel, scratch_);
+    const std::span<float> q(q_.data(), 3 * slots), v(v_.data(), 3 * slots);
+    integrate<float>(def_.integrator, q, v, t, h, accel, scratch_);
     for (std::size_t s = 0; s < slots; ++s) {
       const Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
       if (b.linearDamping > 0.0f) {
@@ -900,7 +1044,7 @@ void World::solve(float dt) {
       }
       if (b.angularDamping > 0.0f) v_[3 * s + 2] *= 1.0f / (1.0f + h * b.angularDamping);
     }
-    freeV_ = v_;
+    freeV_.assign(v.begin(), v.end());
     // Warm start with the impulses carried so far, then solve with the soft bias.
     forEachConstraint([](ContactConstraint& cc, Vec2& vA, float& wA, Vec2& vB, float& wB) {
       const Vec2 tangent = rightPerp(cc.normal);
@@ -920,7 +1064,7 @@ void World::solve(float dt) {
     });
     solveContacts(h, true);
     // Positions: the free motion plus what the contacts changed in the velocity.
-    for (std::size_t k = 0; k < q_.size(); ++k)
+    for (std::size_t k = 0; k < 3 * slots; ++k)
       q_[k] += h * (v_[k] - freeV_[k]);
     for (std::size_t s = 0; s < slots; ++s) {
       deltaPosition_[s] = Vec2{q_[3 * s], q_[3 * s + 1]} - startCenter_[s];
@@ -949,7 +1093,7 @@ void World::continuous() {
   // the static shapes their path touches, and stopped at the first time of impact (the
   // speculative contact of the next step then bounces them). Bodies that moved less than half
   // their smallest extent cannot pass through anything and are skipped.
-  for (std::size_t s = 0; s < slotBody_.size(); ++s) {
+  for (std::size_t s = 0; s < static_cast<std::size_t>(awakeCount_); ++s) {
     Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
     if (b.type != BodyType::dynamicBody || b.shapes.empty()) continue;
     const std::size_t i = 3 * s;

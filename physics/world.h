@@ -17,6 +17,8 @@
 //   refit         body transforms, shape AABBs and quadtree proxies updated, each fat AABB
 //                 stretched along the body's next step (its velocity times dt), so the pairs a
 //                 fast body will meet exist before it moves
+//   sleep         islands of touching bodies that have been still long enough stop being
+//                 simulated (they cost nothing per step until woken)
 //
 // Each phase is timed into profile(). Bodies are referred to by generational handles: a handle
 // to a destroyed body is detected, never silently reused.
@@ -84,6 +86,7 @@ struct BodyDef {
   float gravityScale = 1.0f;
   bool fixedRotation = false;
   bool bullet = false;  // continuous collision against dynamic bodies too (not yet used)
+  bool allowSleep = true;
   std::uint64_t userData = 0;
 };
 
@@ -113,6 +116,13 @@ struct WorldDef {
   // can close in the step (speculative contacts), so fast bodies stop at surfaces instead of
   // passing through thin walls. Off: only within kSpeculativeDistance (shows the tunnelling).
   bool continuous = true;
+  // Sleeping: an island of touching bodies whose every body has moved slower than the
+  // tolerances for timeToSleep seconds stops being simulated until something wakes it (a
+  // contact with an awake body, a force, an impulse, a velocity or transform set, wake()).
+  bool enableSleep = true;
+  float timeToSleep = 0.5f;                                   // s
+  float linearSleepTolerance = 0.05f;                         // m/s
+  float angularSleepTolerance = 2.0f * 3.14159265f / 180.0f;  // rad/s
   // The region most bodies live in: the quadtree's world square. Bodies outside it still work.
   AABB bounds{{-512.0f, -512.0f}, {512.0f, 512.0f}};
 };
@@ -151,7 +161,8 @@ struct ContactEvents {
 
 // Wall-clock milliseconds of the last step, by phase.
 struct Profile {
-  double updatePairs = 0, narrowphase = 0, solve = 0, continuous = 0, refit = 0, total = 0;
+  double updatePairs = 0, narrowphase = 0, solve = 0, continuous = 0, refit = 0, sleep = 0,
+         total = 0;
 };
 
 class World;
@@ -208,6 +219,10 @@ class World {
   void setLinearVelocity(BodyId id, Vec2 v);
   void setAngularVelocity(BodyId id, float w);
   void setTransform(BodyId id, Vec2 position, float angle);
+  bool isAwake(BodyId id) const;
+  // Wakes the body and every body asleep in its island.
+  void wake(BodyId id);
+  int awakeBodyCount() const { return awakeCount_; }
 
   // Forces and torques act for the next step, then are cleared. Impulses change the velocity
   // at once.
@@ -265,6 +280,9 @@ class World {
     float mass = 0, invMass = 0, inertia = 0, invInertia = 0;
     float linearDamping = 0, angularDamping = 0, gravityScale = 1;
     float minExtent = 0, maxExtent = 0;  // for continuous collision (see continuous())
+    bool allowSleep = true;
+    float sleepTime = 0;       // how long it has been slower than the sleep tolerances
+    std::int32_t island = -1;  // its sleeping island, -1 while awake
     std::uint64_t userData = 0;
     std::int32_t slot = -1;  // in q_ and v_; -1 for static bodies
     std::vector<std::int32_t> shapes;
@@ -331,6 +349,10 @@ class World {
   void narrowphase(float dt);
   void solve(float h);
   void continuous();
+  void updateSleep(float dt);
+  bool awake(const Body& b) const { return b.slot >= 0 && b.slot < awakeCount_; }
+  void wakeBody(Body& b);
+  void swapSlots(std::int32_t a, std::int32_t b);
   void destroyContact(std::size_t index);
   void accelerations(std::span<const float> q, std::span<const float> v, float t,
                      std::span<float> a);
@@ -346,6 +368,11 @@ class World {
   // centre of mass, and their velocities. Bodies hold their slot.
   std::vector<float> q_, v_;
   std::vector<std::int32_t> slotBody_;
+  // Slots [0, awakeCount_) are awake; sleeping bodies' slots follow, untouched by the step.
+  int awakeCount_ = 0;
+  std::vector<std::vector<std::int32_t>> islands_;  // sleeping islands: their bodies
+  std::vector<std::int32_t> freeIslands_;
+  std::vector<std::int32_t> islandParent_;  // union-find over awake slots, per step
   IntegratorScratch<float> scratch_;
   std::vector<ProxyPair> newPairs_;
   // Bodies created, moved or given a velocity since the last step: their proxies are stretched

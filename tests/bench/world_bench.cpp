@@ -10,8 +10,8 @@
 //                20 m/s. Counter: bullets that left the arena (escapes: the centre more than
 //                the radius past a wall's inner face). Time per step.
 //   pyramid/B    touching 1 m boxes, base B, friction 0.6, on a static ground box, gravity -10,
-//                1000 steps, sleeping off. Counter: the top box's drift from its exact resting
-//                height (m). Time per step.
+//                1000 steps, sleeping off (and again with sleeping on in both engines). Counter:
+//                the top box's drift from its exact resting height (m). Time per step.
 // Each engine runs with its defaults: Box2D 8 velocity and 3 position iterations, ours 4
 // substeps.
 #include <benchmark/benchmark.h>
@@ -43,6 +43,7 @@ struct BodyDesc {
 };
 struct SceneDesc {
   Vec2 gravity{};
+  bool sleep = false;
   float friction = 0.2f, restitution = 0.5f;
   std::vector<BoxDesc> statics;
   std::vector<BodyDesc> bodies;
@@ -99,6 +100,7 @@ struct Ours {
   explicit Ours(const SceneDesc& s) {
     rc::WorldDef def;
     def.gravity = s.gravity;
+    def.enableSleep = s.sleep;
     def.bounds = {{-128, -128}, {128, 128}};
     world = std::make_unique<rc::World>(def);
     rc::ShapeDef sd;
@@ -135,7 +137,7 @@ struct Box2D {
   std::vector<b2Body*> bodies;
   explicit Box2D(const SceneDesc& s) {
     world = std::make_unique<b2World>(b2Vec2(s.gravity.x, s.gravity.y));
-    world->SetAllowSleeping(false);
+    world->SetAllowSleeping(s.sleep);
     b2BodyDef gd;
     b2Body* ground = world->CreateBody(&gd);
     for (const BoxDesc& b : s.statics) {
@@ -268,6 +270,19 @@ void registerAll() {
   }
   for (int base : {20, 40}) {
     const SceneDesc* s = add(pyramid(base));
+    // The same pyramid with sleeping on in both engines: what a scene at rest costs.
+    SceneDesc sleeping = pyramid(base);
+    sleeping.sleep = true;
+    const SceneDesc* z = add(sleeping);
+    const std::string zname = "pyramid, sleeping on/base " + std::to_string(base);
+    benchmark::RegisterBenchmark((zname + "/ours").c_str(),
+                                 [z](benchmark::State& st) { runPyramid<Ours>(st, *z, 1000); })
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1);
+    benchmark::RegisterBenchmark((zname + "/box2d").c_str(),
+                                 [z](benchmark::State& st) { runPyramid<Box2D>(st, *z, 1000); })
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1);
     const std::string name = "pyramid/base " + std::to_string(base);
     benchmark::RegisterBenchmark((name + "/ours").c_str(),
                                  [s](benchmark::State& st) { runPyramid<Ours>(st, *s, 1000); })

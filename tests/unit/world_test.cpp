@@ -340,7 +340,7 @@ TEST(World, EnergyNeverRises) {
   }
 }
 
-// Box2D's vertical stack: 15 boxes of 1 m on the ground stand upright.
+// Box2D's vertical stack: 15 boxes of 1 m on the ground stand upright and fall asleep.
 TEST(World, VerticalStackStands) {
   rc::World w;
   ground(w);
@@ -358,6 +358,44 @@ TEST(World, VerticalStackStands) {
   EXPECT_NEAR(top.y, 14.5f, 0.05f);
   for (BodyId b : boxes)
     EXPECT_LT(rc::length(w.linearVelocity(b)), 0.01f);
+  // It has gone to sleep as one island, and a push on the top box wakes all of it.
+  EXPECT_EQ(w.awakeBodyCount(), 0);
+  const rc::Vec2 before = w.position(boxes.back());
+  w.applyLinearImpulse(boxes.back(), {2, 0}, w.worldCenter(boxes.back()));
+  EXPECT_EQ(w.awakeBodyCount(), 15);
+  for (int i = 0; i < 10; ++i)
+    w.step(1.0f / 60.0f);
+  EXPECT_GT(w.position(boxes.back()).x, before.x + 0.05f);
+}
+
+// Sleeping bodies cost no step time and keep their state; a body dropped on them wakes them.
+TEST(World, SleepingIslandsWakeOnContact) {
+  rc::World w;
+  ground(w);
+  std::vector<BodyId> row;
+  for (int i = 0; i < 5; ++i) {
+    BodyId b = w.createBody(dynamicAt({2.0f * static_cast<float>(i), 0.5f}));
+    w.createShape(b, rc::makeBox(0.5f, 0.5f));
+    row.push_back(b);
+  }
+  for (int i = 0; i < 60; ++i)
+    w.step(1.0f / 60.0f);
+  EXPECT_EQ(w.awakeBodyCount(), 0);  // five islands of one, all asleep
+  const std::uint64_t asleep = w.stateHash();
+  for (int i = 0; i < 30; ++i)
+    w.step(1.0f / 60.0f);
+  EXPECT_EQ(w.stateHash(), asleep);  // nothing moved
+  // A ball dropped on box 2 wakes box 2 only.
+  BodyId ball = w.createBody(dynamicAt({4.0f, 3.0f}));
+  w.createShape(ball, rc::makeCircle({}, 0.25f));
+  bool woke = false;
+  for (int i = 0; i < 60 && !woke; ++i) {
+    w.step(1.0f / 60.0f);
+    woke = w.isAwake(row[2]);
+  }
+  EXPECT_TRUE(woke);
+  EXPECT_FALSE(w.isAwake(row[0]));
+  EXPECT_FALSE(w.isAwake(row[4]));
 }
 
 // A pyramid of 210 touching 1 m boxes (base 20, friction 0.6) stays up, its top within 5 cm of

@@ -238,60 +238,46 @@ void runPyramid(benchmark::State& state, const SceneDesc& scene, int steps) {
   state.counters["top_drift_m"] = drift / static_cast<double>(state.iterations());
 }
 
+enum class Kind { arena, pyramid };
+
+// Registers "name/ours" and "name/box2d" on the same scene (or ours alone).
+void race(const std::string& name, const SceneDesc* s, Kind kind, bool withBox2D = true) {
+  auto run = [s, kind]<class Engine>(benchmark::State& st) {
+    if (kind == Kind::arena)
+      runArena<Engine>(st, *s, 300);
+    else
+      runPyramid<Engine>(st, *s, 1000);
+  };
+  auto* ours = benchmark::RegisterBenchmark(
+      (name + (withBox2D ? "/ours" : "")).c_str(),
+      [run](benchmark::State& st) { run.template operator()<Ours>(st); });
+  ours->Unit(benchmark::kMillisecond);
+  if (kind == Kind::pyramid) ours->Iterations(1);  // 1000 steps of a pyramid is long enough
+  if (!withBox2D) return;
+  auto* theirs = benchmark::RegisterBenchmark(
+      (name + "/box2d").c_str(),
+      [run](benchmark::State& st) { run.template operator()<Box2D>(st); });
+  theirs->Unit(benchmark::kMillisecond);
+  if (kind == Kind::pyramid) theirs->Iterations(1);
+}
+
 void registerAll() {
   static std::vector<std::unique_ptr<SceneDesc>> scenes;
   auto add = [](SceneDesc s) {
     scenes.push_back(std::make_unique<SceneDesc>(std::move(s)));
     return scenes.back().get();
   };
-  for (int n : {100, 1000, 5000}) {
-    const SceneDesc* s = add(arena(n, 0, 0, 7));
-    const std::string name = "arena/N=" + std::to_string(n);
-    benchmark::RegisterBenchmark((name + "/ours").c_str(), [s](benchmark::State& st) {
-      runArena<Ours>(st, *s, 300);
-    })->Unit(benchmark::kMillisecond);
-    benchmark::RegisterBenchmark((name + "/box2d").c_str(), [s](benchmark::State& st) {
-      runArena<Box2D>(st, *s, 300);
-    })->Unit(benchmark::kMillisecond);
-  }
-  {
-    const SceneDesc* s = add(arena(1000, 500, 100.0f, 8));
-    benchmark::RegisterBenchmark("bullets/100 m per s/ours", [s](benchmark::State& st) {
-      runArena<Ours>(st, *s, 300);
-    })->Unit(benchmark::kMillisecond);
-    benchmark::RegisterBenchmark("bullets/100 m per s/box2d", [s](benchmark::State& st) {
-      runArena<Box2D>(st, *s, 300);
-    })->Unit(benchmark::kMillisecond);
-    // Ours alone at 1000 m/s (Box2D 2.4.1 caps motion at 2 m per step: 120 m/s).
-    const SceneDesc* fast = add(arena(1000, 500, 1000.0f, 8));
-    benchmark::RegisterBenchmark("bullets 1000 m per s (ours alone)", [fast](benchmark::State& st) {
-      runArena<Ours>(st, *fast, 300);
-    })->Unit(benchmark::kMillisecond);
-  }
+  for (int n : {100, 1000, 5000})
+    race("arena/N=" + std::to_string(n), add(arena(n, 0, 0, 7)), Kind::arena);
+  race("bullets/100 m per s", add(arena(1000, 500, 100.0f, 8)), Kind::arena);
+  // Ours alone at 1000 m/s (Box2D 2.4.1 caps motion at 2 m per step: 120 m/s).
+  race("bullets 1000 m per s (ours alone)", add(arena(1000, 500, 1000.0f, 8)), Kind::arena, false);
   for (int base : {20, 40}) {
-    const SceneDesc* s = add(pyramid(base));
+    race("pyramid/base " + std::to_string(base), add(pyramid(base)), Kind::pyramid);
     // The same pyramid with sleeping on in both engines: what a scene at rest costs.
     SceneDesc sleeping = pyramid(base);
     sleeping.sleep = true;
-    const SceneDesc* z = add(sleeping);
-    const std::string zname = "pyramid, sleeping on/base " + std::to_string(base);
-    benchmark::RegisterBenchmark((zname + "/ours").c_str(),
-                                 [z](benchmark::State& st) { runPyramid<Ours>(st, *z, 1000); })
-        ->Unit(benchmark::kMillisecond)
-        ->Iterations(1);
-    benchmark::RegisterBenchmark((zname + "/box2d").c_str(),
-                                 [z](benchmark::State& st) { runPyramid<Box2D>(st, *z, 1000); })
-        ->Unit(benchmark::kMillisecond)
-        ->Iterations(1);
-    const std::string name = "pyramid/base " + std::to_string(base);
-    benchmark::RegisterBenchmark((name + "/ours").c_str(),
-                                 [s](benchmark::State& st) { runPyramid<Ours>(st, *s, 1000); })
-        ->Unit(benchmark::kMillisecond)
-        ->Iterations(1);
-    benchmark::RegisterBenchmark((name + "/box2d").c_str(),
-                                 [s](benchmark::State& st) { runPyramid<Box2D>(st, *s, 1000); })
-        ->Unit(benchmark::kMillisecond)
-        ->Iterations(1);
+    race("pyramid, sleeping on/base " + std::to_string(base), add(sleeping), Kind::pyramid);
   }
 }
 

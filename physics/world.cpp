@@ -215,6 +215,12 @@ void World::destroyBody(BodyId id) {
     if (k.touching) wakeBody(bodies_[static_cast<std::size_t>(bodyA == id.index ? bodyB : bodyA)]);
     destroyContact(c);
   }
+  for (std::size_t k = sensorPairs_.size(); k-- > 0;) {
+    const SensorPair& sp = sensorPairs_[k];
+    if (shapes_[static_cast<std::size_t>(sp.sensor)].body == id.index ||
+        shapes_[static_cast<std::size_t>(sp.visitor)].body == id.index)
+      destroySensorPair(k);
+  }
   for (std::int32_t s : b.shapes) {
     ShapeRecord& r = shapes_[static_cast<std::size_t>(s)];
     broadphase_.destroyProxy(r.proxy);
@@ -606,6 +612,8 @@ void World::step(float dt) {
   events_.begin.clear();
   events_.end.clear();
   events_.hit.clear();
+  sensorEvents_.begin.clear();
+  sensorEvents_.end.clear();
   // Bodies new or changed since the last step: proxies stretched along this step's motion.
   std::sort(pendingRefit_.begin(), pendingRefit_.end());
   pendingRefit_.erase(std::unique(pendingRefit_.begin(), pendingRefit_.end()), pendingRefit_.end());
@@ -639,6 +647,9 @@ void World::step(float dt) {
   }
   profile_.refit = millisecondsSince(t);
   t = Clock::now();
+  updateSensors();
+  profile_.sensors = millisecondsSince(t);
+  t = Clock::now();
   updateSleep(dt);
   profile_.sleep = millisecondsSince(t);
   profile_.total = millisecondsSince(start);
@@ -660,9 +671,20 @@ void World::updatePairs() {
     if (sa > sb) std::swap(sa, sb);
     const ShapeRecord& ra = shapes_[static_cast<std::size_t>(sa)];
     const ShapeRecord& rb = shapes_[static_cast<std::size_t>(sb)];
-    if (ra.body == rb.body || ra.isSensor || rb.isSensor) continue;
+    if (ra.body == rb.body) continue;
     const Body& ba = bodies_[static_cast<std::size_t>(ra.body)];
     const Body& bb = bodies_[static_cast<std::size_t>(rb.body)];
+    if (ra.isSensor || rb.isSensor) {
+      // A sensor and a visitor, at least one of them able to move.
+      if (ra.isSensor == rb.isSensor) continue;
+      if (ba.type == BodyType::staticBody && bb.type == BodyType::staticBody) continue;
+      const std::int32_t sensor = ra.isSensor ? sa : sb, visitor = ra.isSensor ? sb : sa;
+      const std::uint64_t key = pairKey(sensor, visitor);
+      if (sensorIndex_.count(key)) continue;
+      sensorIndex_[key] = static_cast<std::int32_t>(sensorPairs_.size());
+      sensorPairs_.push_back({sensor, visitor, false});
+      continue;
+    }
     if (ba.type != BodyType::dynamicBody && bb.type != BodyType::dynamicBody) continue;
     if (!hasManifold(ra.shape.type, rb.shape.type)) continue;
     const std::uint64_t key = pairKey(sa, sb);
@@ -1081,6 +1103,54 @@ void World::solve(float dt) {
       c.normalImpulse[k] = cc.points[k].normalImpulse;
       c.tangentImpulse[k] = cc.points[k].tangentImpulse;
     }
+  }
+}
+
+// ---------------------------------------------------------------------------------- sensors
+
+void World::destroySensorPair(std::size_t index) {
+  SensorPair& sp = sensorPairs_[index];
+  if (sp.overlapping) sensorEvents_.end.push_back({shapeId(sp.sensor), shapeId(sp.visitor)});
+  sensorIndex_.erase(pairKey(sp.sensor, sp.visitor));
+  if (index + 1 != sensorPairs_.size()) {
+    sensorPairs_[index] = sensorPairs_.back();
+    sensorIndex_[pairKey(sensorPairs_[index].sensor, sensorPairs_[index].visitor)] =
+        static_cast<std::int32_t>(index);
+  }
+  sensorPairs_.pop_back();
+}
+
+void World::updateSensors() {
+  // Runs after the refit: transforms are the step's end; the awake bodies' slots still hold
+  // where they started (startCenter_, startAngle_).
+  for (std::size_t k = sensorPairs_.size(); k-- > 0;) {
+    SensorPair& sp = sensorPairs_[k];
+    const ShapeRecord& sensor = shapes_[static_cast<std::size_t>(sp.sensor)];
+    const ShapeRecord& visitor = shapes_[static_cast<std::size_t>(sp.visitor)];
+    const Body& sb = bodies_[static_cast<std::size_t>(sensor.body)];
+    const Body& vb = bodies_[static_cast<std::size_t>(visitor.body)];
+    if (!awake(sb) && !awake(vb)) continue;  // nothing moved
+    const bool now = testOverlap(sensor.shape, sb.xf, visitor.shape, vb.xf);
+    bool passed = false;
+    if (!now && !sp.overlapping && awake(vb)) {
+      // Not in it before or after: did the visitor's path cross it? (Its translation only;
+      // the sensor at its end transform.)
+      const auto s = static_cast<std::size_t>(vb.slot);
+      const Sweep sweep{vb.localCenter, startCenter_[s], Vec2{q_[3 * s], q_[3 * s + 1]},
+                        startAngle_[s], q_[3 * s + 2]};
+      const Vec2 move = sweep.c2 - sweep.c1;
+      if (move != Vec2{}) {
+        const CastOutput cast = shapeCast(makeProxy(visitor.shape), sweepTransform(sweep, 0.0f),
+                                          move, makeProxy(sensor.shape), sb.xf);
+        passed = cast.hit;
+      }
+    }
+    const ShapeId sid = shapeId(sp.sensor), vid = shapeId(sp.visitor);
+    if ((now && !sp.overlapping) || passed) sensorEvents_.begin.push_back({sid, vid});
+    if ((!now && sp.overlapping) || passed) sensorEvents_.end.push_back({sid, vid});
+    sp.overlapping = now;
+    if (!now && !overlaps(broadphase_.fatAABB(sensor.proxy), broadphase_.fatAABB(visitor.proxy)))
+      destroySensorPair(k);
   }
 }
 

@@ -14,6 +14,7 @@
 //                 restitution, and the impulses stored for the next step's warm start
 //   continuous    fast bodies swept against static shapes and stopped at the first time of
 //                 impact (what speculative contacts cannot foresee: a body deflected mid-step)
+//   sensors       sensor overlaps from the new transforms, and visitors swept through them
 //   refit         body transforms, shape AABBs and quadtree proxies updated, each fat AABB
 //                 stretched along the body's next step (its velocity times dt), so the pairs a
 //                 fast body will meet exist before it moves
@@ -95,7 +96,7 @@ struct ShapeDef {
   float friction = 0.6f;
   float restitution = 0.0f;
   ProxyFilter filter;
-  bool isSensor = false;  // detects overlaps, never collides (events come later)
+  bool isSensor = false;  // detects overlaps (sensorEvents()), never collides
   std::uint64_t userData = 0;
 };
 
@@ -153,6 +154,15 @@ struct ContactHitEvent {
   Vec2 point{}, normal{};
   float approachSpeed = 0;
 };
+// A shape entered or left a sensor. A visitor that passes right through a sensor within one
+// step (a bullet through a trip line) reports both in that step.
+struct SensorEvent {
+  ShapeId sensor, visitor;
+};
+struct SensorEvents {
+  std::vector<SensorEvent> begin, end;
+};
+
 struct ContactEvents {
   std::vector<ContactBeginEvent> begin;
   std::vector<ContactEndEvent> end;
@@ -161,8 +171,8 @@ struct ContactEvents {
 
 // Wall-clock milliseconds of the last step, by phase.
 struct Profile {
-  double updatePairs = 0, narrowphase = 0, solve = 0, continuous = 0, refit = 0, sleep = 0,
-         total = 0;
+  double updatePairs = 0, narrowphase = 0, solve = 0, continuous = 0, refit = 0, sensors = 0,
+         sleep = 0, total = 0;
 };
 
 class World;
@@ -246,6 +256,7 @@ class World {
   BodyId bodyOf(ShapeId shape) const;
 
   const ContactEvents& contactEvents() const { return events_; }
+  const SensorEvents& sensorEvents() const { return sensorEvents_; }
 
   // A user force evaluated at every integrator stage (springs, drag, attractors).
   void addForceField(ForceField field) { fields_.push_back(std::move(field)); }
@@ -350,6 +361,8 @@ class World {
   void solve(float h);
   void continuous();
   void updateSleep(float dt);
+  void updateSensors();
+  void destroySensorPair(std::size_t index);
   bool awake(const Body& b) const { return b.slot >= 0 && b.slot < awakeCount_; }
   void wakeBody(Body& b);
   void swapSlots(std::int32_t a, std::int32_t b);
@@ -387,6 +400,14 @@ class World {
   std::vector<float> startAngle_;
   std::vector<Vec2> startCenter_;
   ContactEvents events_;
+  SensorEvents sensorEvents_;
+  // Sensor shapes and the shapes whose fat AABBs overlap them.
+  struct SensorPair {
+    std::int32_t sensor, visitor;
+    bool overlapping = false;
+  };
+  std::vector<SensorPair> sensorPairs_;
+  std::unordered_map<std::uint64_t, std::int32_t> sensorIndex_;
   // Contacts by their shape pair, for finding whether a new proxy pair already has one.
   std::unordered_map<std::uint64_t, std::int32_t> contactIndex_;
   Profile profile_;

@@ -10,4 +10,7 @@ namespace game {
 // value worked out by hand, so a person can check the engine at a glance.
 int runDemo(std::span<const std::string_view> args);
 
+// `ricochet sim SCENE.json --steps N ...`: steps a scene file, writes the final state.
+int runSim(std::span<const std::string_view> args);
+
 }  // namespace game

@@ -279,8 +279,8 @@ SceneDesc parseScene(std::string_view text, const std::string& name) {
     const auto line = what.find("line "), tag = what.find("] ");
     if (line != std::string::npos)
       throw SceneError(name + ": not valid JSON at " + what.substr(line));
-    throw SceneError(name + ": not valid JSON: " +
-                     (tag == std::string::npos ? what : what.substr(tag + 2)));
+    throw SceneError(
+        name + ": not valid JSON: " + (tag == std::string::npos ? what : what.substr(tag + 2)));
   }
   const Where at{name, ""};
   if (!root.is_object()) at.fail("", "the top level must be an object with \"bodies\"");

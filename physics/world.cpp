@@ -839,6 +839,9 @@ void World::solveContacts(float h, bool useBias) {
   const float a1 = 2.0f * zeta + h * omega, a2 = h * omega * a1, a3 = 1.0f / (1.0f + a2);
   const float biasRate = omega / a1, softMassScale = a2 * a3, softImpulseScale = a3;
   const float invH = 1.0f / h;
+  // For the block solve: 1 / s_m and (1 - s_i) / s_m of the soft regime (the rigid one has 1).
+  const float invSoftMass = 1.0f / softMassScale;
+  const float softCarry = (1.0f - softImpulseScale) * invSoftMass;
   forEachConstraint([&](ContactConstraint& cc, Vec2& vA, float& wA, Vec2& vB, float& wB) {
     const Vec2 n = cc.normal;
     const Vec2 dpA = cc.slotA >= 0 ? deltaPosition_[static_cast<std::size_t>(cc.slotA)] : Vec2{};
@@ -864,13 +867,17 @@ void World::solveContacts(float h, bool useBias) {
       }
     }
     auto normalVelocity = [&](const ConstraintPoint& p) {
-      return dot((vB + cross(wB, p.rB)) - (vA + cross(wA, p.rA)), n);
+      return dot(vB - vA, n) + wB * p.rnB - wA * p.rnA;
     };
     auto setImpulse = [&](ConstraintPoint& p, float total) {
       const float applied = total - p.normalImpulse;
       p.normalImpulse = total;
       p.maxNormalImpulse = std::max(p.maxNormalImpulse, applied);
-      applyImpulse(cc, p, applied * n, vA, wA, vB, wB);
+      const Vec2 P = applied * n;
+      vA -= cc.invMassA * P;
+      wA -= cc.invIA * applied * p.rnA;
+      vB += cc.invMassB * P;
+      wB += cc.invIB * applied * p.rnB;
     };
     if (cc.pointCount == 2 && cc.blockSolve && massScale[0] == massScale[1] &&
         impulseScale[0] == impulseScale[1]) {
@@ -886,11 +893,12 @@ void World::solveContacts(float h, bool useBias) {
       const float l0 = p0.normalImpulse, l1 = p1.normalImpulse;
       // With A = K / s_m: q = vn + b - ((1 - s_i) / s_m) K l, and A^-1 = s_m K^-1 (kept from
       // the prepare, so the four cases cost no division).
-      const float sm = massScale[0], c = (1.0f - impulseScale[0]) / sm;
+      const bool soft = massScale[0] != 1.0f;
+      const float sm = massScale[0], c = soft ? softCarry : 1.0f;
       const float q0 = vn[0] + bias[0] - c * (cc.k11 * l0 + cc.k12 * l1);
       const float q1 = vn[1] + bias[1] - c * (cc.k12 * l0 + cc.k22 * l1);
       float x0 = -sm * (cc.i11 * q0 + cc.i12 * q1), x1 = -sm * (cc.i12 * q0 + cc.i22 * q1);
-      const float a12 = cc.k12 / sm;
+      const float a12 = soft ? cc.k12 * invSoftMass : cc.k12;
       bool solved = x0 >= 0.0f && x1 >= 0.0f;
       if (!solved) {  // only the first point pushes
         x0 = -sm * p0.normalMass * q0;
@@ -932,14 +940,16 @@ void World::solveContacts(float h, bool useBias) {
     const Vec2 t = rightPerp(n);
     for (int k = 0; k < cc.pointCount; ++k) {
       ConstraintPoint& p = cc.points[k];
-      const Vec2 dv = (vB + cross(wB, p.rB)) - (vA + cross(wA, p.rA));
-      const float vt = dot(dv, t);
+      const float vt = dot(vB - vA, t) + wB * p.rtB - wA * p.rtA;
       const float limit = cc.friction * p.normalImpulse;
       const float total = std::clamp(p.tangentImpulse - p.tangentMass * vt, -limit, limit);
       const float applied = total - p.tangentImpulse;
       p.tangentImpulse = total;
       const Vec2 P = applied * t;
-      applyImpulse(cc, p, P, vA, wA, vB, wB);
+      vA -= cc.invMassA * P;
+      wA -= cc.invIA * applied * p.rtA;
+      vB += cc.invMassB * P;
+      wB += cc.invIB * applied * p.rtB;
     }
   });
 }
@@ -953,8 +963,7 @@ void World::applyRestitution() {
       ConstraintPoint& p = cc.points[k];
       // Only points that were approaching fast enough and that the solver pushed.
       if (p.relativeVelocity > -threshold || p.maxNormalImpulse == 0.0f) continue;
-      const Vec2 dv = (vB + cross(wB, p.rB)) - (vA + cross(wA, p.rA));
-      const float vn = dot(dv, n);
+      const float vn = dot(vB - vA, n) + wB * p.rnB - wA * p.rnA;
       const float impulse = -p.normalMass * (vn + cc.restitution * p.relativeVelocity);
       const float total = std::max(p.normalImpulse + impulse, 0.0f);
       const float applied = total - p.normalImpulse;
@@ -1007,9 +1016,13 @@ void World::solve(float dt) {
       p.rB = mp.anchorB - offsetB;
       p.baseSeparation = mp.separation;
       const float rnA = cross(p.rA, cc.normal), rnB = cross(p.rB, cc.normal);
+      p.rnA = rnA;
+      p.rnB = rnB;
       const float kNormal = cc.invMassA + cc.invMassB + cc.invIA * rnA * rnA + cc.invIB * rnB * rnB;
       p.normalMass = kNormal > 0.0f ? 1.0f / kNormal : 0.0f;
       const float rtA = cross(p.rA, t), rtB = cross(p.rB, t);
+      p.rtA = rtA;
+      p.rtB = rtB;
       const float kTangent =
           cc.invMassA + cc.invMassB + cc.invIA * rtA * rtA + cc.invIB * rtB * rtB;
       p.tangentMass = kTangent > 0.0f ? 1.0f / kTangent : 0.0f;
@@ -1073,15 +1086,19 @@ void World::solve(float dt) {
       // The approach speed that restitution reverses: the fastest free-motion normal velocity
       // of the step, which includes what gravity added before the impact (the velocity at the
       // start of the step falls short by up to g h).
+      const Vec2 dv = vB - vA;
       for (int k = 0; k < cc.pointCount; ++k) {
         ConstraintPoint& p = cc.points[k];
-        const Vec2 dv = (vB + cross(wB, p.rB)) - (vA + cross(wA, p.rA));
-        p.relativeVelocity = std::min(p.relativeVelocity, dot(dv, cc.normal));
+        const float vn = dot(dv, cc.normal) + wB * p.rnB - wA * p.rnA;
+        p.relativeVelocity = std::min(p.relativeVelocity, vn);
       }
       for (int k = 0; k < cc.pointCount; ++k) {
         const ConstraintPoint& p = cc.points[k];
         const Vec2 P = p.normalImpulse * cc.normal + p.tangentImpulse * tangent;
-        applyImpulse(cc, p, P, vA, wA, vB, wB);
+        vA -= cc.invMassA * P;
+        wA -= cc.invIA * (p.normalImpulse * p.rnA + p.tangentImpulse * p.rtA);
+        vB += cc.invMassB * P;
+        wB += cc.invIB * (p.normalImpulse * p.rnB + p.tangentImpulse * p.rtB);
       }
     });
     solveContacts(h, true);

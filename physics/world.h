@@ -319,6 +319,9 @@ class World {
   // One touching contact prepared for the substeps.
   struct ConstraintPoint {
     Vec2 rA, rB;  // anchors from the centres of mass at the start of the step
+    // rA x n, rB x n, rA x t, rB x t: a point's velocity along n is dot(vB - vA, n) +
+    // wB (rB x n) - wA (rA x n), and an impulse along n turns A by -iA (rA x n) per unit.
+    float rnA, rnB, rtA, rtB;
     float baseSeparation;
     float normalMass, tangentMass;
     float normalImpulse, tangentImpulse, maxNormalImpulse;

@@ -638,8 +638,10 @@ void World::step(float dt) {
   for (std::size_t s = 0; s < static_cast<std::size_t>(awakeCount_); ++s) {
     Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
     const auto i = 3 * static_cast<std::size_t>(b.slot);
-    b.angle = q_[i + 2];
-    b.xf.q = Rot::fromAngle(b.angle);
+    if (q_[i + 2] != b.angle) {  // no trigonometry for bodies that did not turn
+      b.angle = q_[i + 2];
+      b.xf.q = Rot::fromAngle(b.angle);
+    }
     b.xf.p = Vec2{q_[i], q_[i + 1]} - rotate(b.xf.q, b.localCenter);
     b.force = {};
     b.torque = 0.0f;
@@ -1107,7 +1109,9 @@ void World::solve(float dt) {
       q_[k] += h * (v_[k] - freeV_[k]);
     for (std::size_t s = 0; s < slots; ++s) {
       deltaPosition_[s] = Vec2{q_[3 * s], q_[3 * s + 1]} - startCenter_[s];
-      deltaRotation_[s] = Rot::fromAngle(q_[3 * s + 2] - startAngle_[s]);
+      // Bodies that do not turn (fixed rotation, or just not spinning) cost no trigonometry.
+      const float turned = q_[3 * s + 2] - startAngle_[s];
+      deltaRotation_[s] = turned == 0.0f ? Rot{} : Rot::fromAngle(turned);
     }
     // Relax: the same solve without the push-out bias, so separating bodies keep no speed
     // from it (the bias pushes positions apart; relax removes its velocity).

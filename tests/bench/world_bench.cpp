@@ -44,6 +44,7 @@ struct BodyDesc {
 struct SceneDesc {
   Vec2 gravity{};
   bool sleep = false;
+  bool fixedRotation = false;  // every dynamic body
   float friction = 0.2f, restitution = 0.5f;
   std::vector<BoxDesc> statics;
   std::vector<BodyDesc> bodies;
@@ -115,6 +116,7 @@ struct Ours {
       bd.position = b.position;
       bd.linearVelocity = b.velocity;
       bd.bullet = b.bullet;
+      bd.fixedRotation = s.fixedRotation;
       const rc::BodyId id = world->createBody(bd);
       if (b.radius > 0)
         world->createShape(id, rc::makeCircle({}, b.radius), sd);
@@ -155,6 +157,7 @@ struct Box2D {
       bd.position.Set(b.position.x, b.position.y);
       bd.linearVelocity.Set(b.velocity.x, b.velocity.y);
       bd.bullet = b.bullet;
+      bd.fixedRotation = s.fixedRotation;
       b2Body* body = world->CreateBody(&bd);
       b2CircleShape circle;
       circle.m_radius = b.radius;
@@ -269,6 +272,10 @@ void registerAll() {
   };
   for (int n : {100, 1000, 5000})
     race("arena/N=" + std::to_string(n), add(arena(n, 0, 0, 7)), Kind::arena);
+  // What a scene that does not turn saves: the same 1000-circle arena with fixed rotation.
+  SceneDesc still = arena(1000, 0, 0, 7);
+  still.fixedRotation = true;
+  race("arena, fixed rotation/N=1000", add(still), Kind::arena);
   race("bullets/100 m per s", add(arena(1000, 500, 100.0f, 8)), Kind::arena);
   // Ours alone at 1000 m/s (Box2D 2.4.1 caps motion at 2 m per step: 120 m/s).
   race("bullets 1000 m per s (ours alone)", add(arena(1000, 500, 1000.0f, 8)), Kind::arena, false);

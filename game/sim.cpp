@@ -5,11 +5,20 @@
 #include <charconv>
 #include <cstdio>
 #include <exception>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "game/cli.h"
 #include "game/scene.h"
+
+#ifdef RICOCHET_HAS_RENDER
+#include "game/scene_view.h"
+#include "render/contact_sheet.h"
+#include "render/frame_writer.h"
+#include "render/png.h"
+#include "render/renderer.h"
+#endif
 
 namespace game {
 namespace {
@@ -25,11 +34,23 @@ constexpr const char* kSimUsage =
     "  --out FILE         the final state as JSON (every body's position, angle, velocities)\n"
     "  --trace LIST       bodies to record every step, by index or name, comma-separated\n"
     "  --csv FILE         where the trace goes: step,time,body,x,y,angle,vx,vy,w\n"
+    "  --frames DIR       render frame_000000.png, ... into DIR (step 0 and every K-th step)\n"
+    "  --every K          with --frames: every K-th step (default 1)\n"
+    "  --size WxH         with --frames: frame size in pixels (default 640x360)\n"
+    "  --no-overlay       with --frames: without the debug overlay (AABBs, contacts,\n"
+    "                     velocities)\n"
+    "  --sheet FILE       with --frames: also a contact sheet of up to 24 of the frames\n"
     "Exit codes: 0 done, 1 bad scene or unwritable output, 2 bad command line.\n";
 
 int usageError(const std::string& what) {
   std::fprintf(stderr, "ricochet sim: %s (try ricochet sim --help)\n", what.c_str());
   return 2;
+}
+
+// A whole decimal number >= least, the whole text.
+bool whole(const std::string& text, long least, long& out) {
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
+  return ec == std::errc() && end == text.data() + text.size() && out >= least;
 }
 
 // Body indices from a list of indices or names.
@@ -61,8 +82,10 @@ bool resolveTrace(const std::string& list, const SceneDesc& scene, std::vector<s
 }  // namespace
 
 int runSim(std::span<const std::string_view> args) {
-  std::string scenePath, outPath, csvPath, trace, integrator;
-  long steps = -1;
+  std::string scenePath, outPath, csvPath, trace, integrator, framesDir, sheetPath;
+  long steps = -1, every = 1;
+  int width = 640, height = 360;
+  bool overlay = true;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string_view a = args[i];
     auto value = [&](std::string& into) {
@@ -75,9 +98,7 @@ int runSim(std::span<const std::string_view> args) {
       return 0;
     } else if (a == "--steps") {
       std::string v;
-      if (!value(v)) return usageError("--steps needs a number");
-      const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), steps);
-      if (ec != std::errc() || end != v.data() + v.size() || steps < 0)
+      if (!value(v) || !whole(v, 0, steps))
         return usageError("--steps must be a whole number >= 0, got '" + v + "'");
     } else if (a == "--out") {
       if (!value(outPath)) return usageError("--out needs a file name");
@@ -87,6 +108,27 @@ int runSim(std::span<const std::string_view> args) {
       if (!value(trace)) return usageError("--trace needs a list of bodies");
     } else if (a == "--integrator") {
       if (!value(integrator)) return usageError("--integrator needs a name");
+    } else if (a == "--frames") {
+      if (!value(framesDir)) return usageError("--frames needs a directory");
+    } else if (a == "--sheet") {
+      if (!value(sheetPath)) return usageError("--sheet needs a file name");
+    } else if (a == "--no-overlay") {
+      overlay = false;
+    } else if (a == "--every") {
+      std::string v;
+      if (!value(v) || !whole(v, 1, every))
+        return usageError("--every must be a whole number >= 1, got '" + v + "'");
+    } else if (a == "--size") {
+      std::string v;
+      if (!value(v)) return usageError("--size needs WxH");
+      const std::size_t x = v.find('x');
+      const auto [e1, c1] = std::from_chars(v.data(), v.data() + std::min(x, v.size()), width);
+      const auto [e2, c2] = x == std::string::npos
+                                ? std::from_chars(v.data(), v.data(), height)
+                                : std::from_chars(v.data() + x + 1, v.data() + v.size(), height);
+      if (x == std::string::npos || c1 != std::errc() || c2 != std::errc() ||
+          e2 != v.data() + v.size() || width < 16 || height < 16 || width > 8192 || height > 8192)
+        return usageError("--size must be WxH with 16 to 8192 pixels each, got '" + v + "'");
     } else if (!a.empty() && a[0] == '-') {
       return usageError("unknown option '" + std::string(a) + "'");
     } else if (scenePath.empty()) {
@@ -98,6 +140,13 @@ int runSim(std::span<const std::string_view> args) {
   if (scenePath.empty()) return usageError("no scene file");
   if (steps < 0) return usageError("--steps is required");
   if (trace.empty() != csvPath.empty()) return usageError("--trace and --csv go together");
+  if (framesDir.empty() && !sheetPath.empty()) return usageError("--sheet needs --frames");
+#ifndef RICOCHET_HAS_RENDER
+  if (!framesDir.empty())
+    return usageError(
+        "--frames: this ricochet was built without the renderer "
+        "(-DRICOCHET_RENDER=OFF)");
+#endif
 
   try {
     SceneDesc scene = loadScene(scenePath);
@@ -124,15 +173,51 @@ int runSim(std::span<const std::string_view> args) {
         csv += line;
       }
     };
+#ifdef RICOCHET_HAS_RENDER
+    // Frames: the camera fitted once to the scene as it starts, so the view does not jump.
+    std::unique_ptr<render::Renderer> renderer;
+    std::unique_ptr<render::FrameWriter> writer;
+    render::Camera camera;
+    std::vector<render::Image> sheet;
+    const long sheetEvery = std::max(1L, (steps / every + 1 + 23) / 24);
+    ViewOptions view;
+    view.overlay = overlay;
+    view.caption = scenePath;
+    auto frame = [&](long step) {
+      if (!writer || step % every != 0) return;
+      render::Image image = renderer->render(drawWorld(*built.world, step, view), camera);
+      if (!sheetPath.empty() && (step / every) % sheetEvery == 0) sheet.push_back(image);
+      writer->submit(step / every, std::move(image));
+    };
+    if (!framesDir.empty()) {
+      renderer = std::make_unique<render::Renderer>();
+      render::FrameWriterOptions options;
+      options.directory = framesDir;
+      writer = std::make_unique<render::FrameWriter>(options);
+      camera = cameraForWorld(*built.world, width, height);
+    }
+#else
+    auto frame = [](long) {};
+#endif
     record(0);
+    frame(0);
     double total = 0;
     for (long k = 1; k <= steps; ++k) {
       built.world->step(scene.dt);
       total += built.world->profile().total;
       record(k);
+      frame(k);
       if (steps >= 10000 && k % (steps / 10) == 0)
         std::fprintf(stderr, "ricochet sim: %ld of %ld steps\n", k, steps);
     }
+#ifdef RICOCHET_HAS_RENDER
+    if (writer) {
+      writer->finish();
+      if (!sheetPath.empty()) render::writePng(sheetPath, render::contactSheet(sheet));
+      std::fprintf(stderr, "ricochet sim: %lld frames in %s\n",
+                   static_cast<long long>(writer->stats().framesWritten), framesDir.c_str());
+    }
+#endif
     const SceneState state = captureState(scene, built, static_cast<int>(steps));
     if (!outPath.empty()) writeFileAtomically(outPath, stateToJson(state));
     if (!csvPath.empty()) writeFileAtomically(csvPath, csv);

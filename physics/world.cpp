@@ -557,6 +557,39 @@ void World::applyAngularImpulse(BodyId id, float impulse) {
     v_[3 * static_cast<std::size_t>(b.slot) + 2] += b.invInertia * impulse;
 }
 
+std::vector<BodyId> World::bodies() const {
+  std::vector<BodyId> out;
+  for (std::size_t i = 0; i < bodies_.size(); ++i)
+    if (bodies_[i].alive) out.push_back({static_cast<std::int32_t>(i), bodies_[i].generation});
+  return out;
+}
+
+std::vector<ShapeId> World::shapesOf(BodyId id) const {
+  std::vector<ShapeId> out;
+  for (std::int32_t s : body(id).shapes)
+    out.push_back(shapeId(s));
+  return out;
+}
+
+const Shape& World::shape(ShapeId id) const {
+  return shapeRecord(id).shape;
+}
+
+bool World::isSensor(ShapeId id) const {
+  return shapeRecord(id).isSensor;
+}
+
+std::vector<World::ContactPointView> World::contactPoints() const {
+  std::vector<ContactPointView> out;
+  for (const Contact& c : contacts_) {
+    if (!c.touching) continue;
+    for (int k = 0; k < c.manifold.pointCount; ++k)
+      out.push_back({c.manifold.points[k].point, c.manifold.normal, c.manifold.points[k].separation,
+                     c.normalImpulse[k]});
+  }
+  return out;
+}
+
 int World::touchingContactCount() const {
   int n = 0;
   for (const Contact& c : contacts_)

@@ -264,6 +264,18 @@ class World {
   int bodyCount() const { return bodyCount_; }
   int contactCount() const { return static_cast<int>(contacts_.size()); }
   int touchingContactCount() const;
+
+  // Read-only views for tools that draw or inspect a world (the renderer's overlay).
+  std::vector<BodyId> bodies() const;              // alive ones, by index
+  std::vector<ShapeId> shapesOf(BodyId id) const;  // in creation order
+  const Shape& shape(ShapeId id) const;
+  bool isSensor(ShapeId id) const;
+  struct ContactPointView {
+    Vec2 point, normal;  // normal from shape A to shape B
+    float separation;
+    float normalImpulse;  // of the last step
+  };
+  std::vector<ContactPointView> contactPoints() const;  // of touching contacts
   const WorldDef& def() const { return def_; }
   const Profile& profile() const { return profile_; }
   double time() const { return time_; }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <iterator>
+#include <string>
 #include <vector>
 
 namespace game {
@@ -96,6 +97,16 @@ render::Frame drawWorld(const rc::World& world, long step, const ViewOptions& op
     }
   }
   if (options.overlay) {
+    // Quadtree cells that hold something (moving tree in cyan, static in grey), then body ids.
+    for (const rc::Quadtree::OccupiedCell& cell : world.broadphase().occupiedCells())
+      frame.overlay.rect(
+          cell.bounds,
+          render::Style::outlined(
+              cell.isStatic ? Color{160, 160, 160, 50} : Color{60, 200, 220, 70}, 1.0f));
+    for (rc::BodyId id : world.bodies())
+      if (world.type(id) != rc::BodyType::staticBody)
+        frame.overlay.text(world.worldCenter(id), std::to_string(id.index), 10,
+                           {255, 255, 255, 200}, render::HAlign::kCenter, render::VAlign::kMiddle);
     for (const rc::World::ContactPointView& cp : world.contactPoints()) {
       frame.overlay.dot(cp.point, 2.5f, render::colors::kRed);
       frame.overlay.arrow(cp.point, cp.point + 0.3f * cp.normal, 1.0f, render::colors::kRed, 4.0f);

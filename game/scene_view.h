@@ -1,6 +1,7 @@
 // A world drawn as a render::Frame: every shape in the world layer (static bodies grey,
 // dynamic ones in a colour of their own, darker while asleep, kinematic ones blue, sensors as
-// outlines), and the debug overlay (AABBs, contact points with their normals, velocities).
+// outlines), and the debug overlay (AABBs, the quadtree's occupied cells, body ids, contact
+// points with their normals, velocities).
 // The renderer knows no physics types; this is where the two meet (game -> render, game ->
 // physics).
 #pragma once

@@ -281,6 +281,23 @@ std::vector<ProxyId> Quadtree::queryPoint(Vec2 p, ProxyFilter filter) const {
   return queryAABB(AABB{p, p}, filter);
 }
 
+std::vector<Quadtree::OccupiedCell> Quadtree::occupiedCells() const {
+  std::vector<OccupiedCell> out;
+  for (const Tree* tree : {&static_, &moving_}) {
+    for (int l = 0; l <= maxDepth_; ++l) {
+      const Level& lv = tree->levels[static_cast<std::size_t>(l)];
+      if (lv.population == 0) continue;
+      for (int c = 0; c < lv.side * lv.side; ++c) {
+        if (lv.heads[static_cast<std::size_t>(c)] == kNullProxy) continue;
+        const Vec2 lo{origin_.x + static_cast<float>(c % lv.side) * lv.cellSize,
+                      origin_.y + static_cast<float>(c / lv.side) * lv.cellSize};
+        out.push_back({{lo, {lo.x + lv.cellSize, lo.y + lv.cellSize}}, l, tree == &static_});
+      }
+    }
+  }
+  return out;
+}
+
 void Quadtree::validate() const {
   auto fail = [](const std::string& what) {
     throw std::logic_error("Quadtree::validate: " + what);

@@ -232,6 +232,16 @@ class Quadtree : public ProxyStore {
   void validate() const;
 
   int maxDepth() const { return maxDepth_; }
+
+  // The cells that hold at least one proxy (their own bounds, not the loose ones), with their
+  // level and whether they belong to the static tree: for a debug overlay. Scans every cell of
+  // every populated level, so it is for drawing, not for per-step use.
+  struct OccupiedCell {
+    AABB bounds;
+    int level;
+    bool isStatic;
+  };
+  std::vector<OccupiedCell> occupiedCells() const;
   // Overrides kBruteForceBelow (0: always the tree). For measuring the crossover.
   void setBruteForceBelow(int count) { bruteBelow_ = count; }
 

@@ -276,6 +276,7 @@ class World {
     float normalImpulse;  // of the last step
   };
   std::vector<ContactPointView> contactPoints() const;  // of touching contacts
+  const Quadtree& broadphase() const { return broadphase_; }
   const WorldDef& def() const { return def_; }
   const Profile& profile() const { return profile_; }
   double time() const { return time_; }

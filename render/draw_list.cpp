@@ -169,4 +169,23 @@ void DrawList::text(rc::Vec2 at, std::string string, float sizePixels, Color col
   texts.push_back(Text{at, std::move(string), sizePixels, color, halign, valign});
 }
 
+void DrawList::sprite(SpriteId image, rc::Vec2 center, rc::Vec2 size, float angle, Color tint,
+                      const SpriteRect& source) {
+  if (!image.valid()) fail("sprite", "no image (a SpriteId from Renderer::loadSprite)");
+  checkPoint("sprite", "centre", center);
+  if (!(rc::isFinite(size) && size.x > 0.0f && size.y > 0.0f)) {
+    fail("sprite", "size must be finite and > 0, got (" + str(size.x) + ", " + str(size.y) + ")");
+  }
+  if (!std::isfinite(angle)) fail("sprite", "angle must be finite, got " + str(angle));
+  checkSize("sprite", "source x", source.x);
+  checkSize("sprite", "source y", source.y);
+  checkSize("sprite", "source width", source.width);
+  checkSize("sprite", "source height", source.height);
+  if ((source.width > 0.0f) != (source.height > 0.0f)) {
+    fail("sprite", "source width and height must both be > 0, or both 0 for the whole image");
+  }
+  sprites.push_back(
+      Sprite{center, size, angle, source, tint, image, static_cast<std::uint32_t>(shapes.size())});
+}
+
 }  // namespace render

@@ -1,9 +1,12 @@
 // A frame description: plain data that the caller builds and the Renderer draws.
 //
-// A DrawList holds shapes in one coordinate space and draws them in the order they were added
-// (later on top), all of them in one instanced draw call; then its text, on top of its shapes,
-// in a second call. A Frame stacks three lists: the world (camera space, y up), a debug overlay
-// drawn only when switched on, and a HUD in pixel space (y down, origin top-left).
+// A DrawList holds shapes and sprites in one coordinate space and draws them in the order they
+// were added (later on top), whatever their kind; then its text, on top of both. Shapes go in one
+// instanced draw call and sprites in one per texture; when a list interleaves shapes and sprites
+// (or sprites of different images), each run of one kind and one image is a call of its own, so
+// adding sprites of one image together, apart from the shapes, keeps a frame to a few calls. A
+// Frame stacks three lists: the world (camera space, y up), a debug overlay drawn only when
+// switched on, and a HUD in pixel space (y down, origin top-left).
 //
 // Units: geometry (centres, radii, vertices) is in the list's space (world units for the world
 // and overlay, pixels for the HUD). Stroke widths, line widths, arrow heads and text sizes are
@@ -12,6 +15,12 @@
 //
 // Outlines lie inside the shape's edge: a circle of radius r with a 2 px outline covers exactly
 // the pixels a filled one would. A fill with alpha 0 draws the outline alone.
+//
+// Sprites: an image loaded by the Renderer (Renderer::loadSprite), drawn as a rectangle of a
+// given size in the list's units around its centre, turned by an angle (radians, counter-clockwise
+// as seen in the picture, in every layer; the image's top faces the top of the picture at angle
+// 0), its texels multiplied by a tint (white leaves them as they are; the tint's alpha fades the
+// sprite). Its edge is anti-aliased like a shape's.
 #pragma once
 
 #include <cstdint>
@@ -54,6 +63,34 @@ struct Text {
   VAlign valign = VAlign::kTop;
 };
 
+// An image the Renderer holds (Renderer::loadSprite); valid only with the Renderer that made it.
+// Zero is "no image".
+struct SpriteId {
+  std::uint32_t value = 0;
+  bool valid() const { return value != 0; }
+  friend bool operator==(SpriteId, SpriteId) = default;
+};
+
+// Part of a sprite's image, in its pixels from its top-left corner; all zero: the whole image.
+struct SpriteRect {
+  float x = 0.0f;
+  float y = 0.0f;
+  float width = 0.0f;
+  float height = 0.0f;
+};
+
+// One drawn sprite; also the per-instance record uploaded to the GPU.
+struct Sprite {
+  rc::Vec2 center{};
+  rc::Vec2 size{};      // width and height in the list's units
+  float angle = 0.0f;   // radians, counter-clockwise in the picture
+  SpriteRect source{};  // part of the image; all zero: the whole image
+  Color tint = colors::kWhite;
+  SpriteId image{};
+  std::uint32_t shapesBefore = 0;  // draw order: on top of the list's first shapesBefore shapes
+};
+static_assert(sizeof(Sprite) == 48, "Sprite is the GPU instance layout");
+
 // Fill and outline of a closed shape.
 struct Style {
   Color fill = colors::kWhite;
@@ -74,6 +111,7 @@ class DrawList {
   std::vector<Shape> shapes;
   std::vector<rc::Vec2> points;  // polygon vertices, referred to by Shape::firstPoint
   std::vector<Text> texts;
+  std::vector<Sprite> sprites;
 
   // Every adder checks its input and throws std::invalid_argument naming the bad value
   // (non-finite coordinates, negative sizes, a polygon that is not convex).
@@ -94,13 +132,17 @@ class DrawList {
   void arrow(rc::Vec2 from, rc::Vec2 to, float widthPixels, Color color, float headPixels = 10.0f);
   void text(rc::Vec2 at, std::string text, float sizePixels, Color color,
             HAlign halign = HAlign::kLeft, VAlign valign = VAlign::kTop);
+  // `size` > 0 in the list's units; `source` must lie inside the image (checked when drawn).
+  void sprite(SpriteId image, rc::Vec2 center, rc::Vec2 size, float angle = 0.0f,
+              Color tint = colors::kWhite, const SpriteRect& source = {});
 
   void clear() {
     shapes.clear();
     points.clear();
     texts.clear();
+    sprites.clear();
   }
-  bool empty() const { return shapes.empty() && texts.empty(); }
+  bool empty() const { return shapes.empty() && texts.empty() && sprites.empty(); }
 };
 
 struct Frame {

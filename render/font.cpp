@@ -55,6 +55,16 @@ std::vector<unsigned char> readFile(const std::string& path) {
 
 }  // namespace
 
+const char* shippedFontPath() {
+  return RICOCHET_SHIPPED_FONT;
+}
+
+std::string defaultFontPath() {
+  const char* fromEnvironment = std::getenv("RICOCHET_FONT");
+  if (fromEnvironment != nullptr && fromEnvironment[0] != '\0') return fromEnvironment;
+  return shippedFontPath();
+}
+
 struct Font::Impl {
   struct Glyph {
     bool present = false;

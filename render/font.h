@@ -17,8 +17,14 @@
 
 namespace render {
 
-// Debian's fonts-dejavu-core; the Renderer's default.
-inline constexpr const char* kDefaultFontPath = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+// The font shipped with the project, assets/fonts/DejaVuSans.ttf (its licence beside it), as the
+// absolute path of the source tree the library was built from (a compile definition), so a
+// binary finds it from any working directory without a system font package.
+const char* shippedFontPath();
+
+// The font a Renderer uses when RendererOptions::fontPath is empty: the environment variable
+// RICOCHET_FONT when it is set and not empty, else shippedFontPath().
+std::string defaultFontPath();
 
 class Font {
  public:

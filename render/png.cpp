@@ -92,11 +92,18 @@ void writePng(const std::filesystem::path& path, const Image& image, const PngOp
 }
 
 Image readPng(const std::filesystem::path& path) {
+  // Opened here rather than by stb, whose only message for a missing file is "can't fopen".
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (f == nullptr) {
+    throw std::runtime_error("render: cannot read PNG '" + path.string() +
+                             "': " + std::strerror(errno));
+  }
   int w = 0, h = 0, channels = 0;
-  stbi_uc* pixels = stbi_load(path.c_str(), &w, &h, &channels, 4);
+  stbi_uc* pixels = stbi_load_from_file(f, &w, &h, &channels, 4);
+  std::fclose(f);
   if (pixels == nullptr) {
     throw std::runtime_error("render: cannot read PNG '" + path.string() +
-                             "': " + stbi_failure_reason());
+                             "': not a valid PNG file (stb_image: " + stbi_failure_reason() + ")");
   }
   Image image(w, h);
   std::memcpy(image.rgba.data(), pixels, image.rgba.size());

@@ -28,7 +28,9 @@ void writeFileAtomically(const std::filesystem::path& path, const std::vector<st
 void writePng(const std::filesystem::path& path, const Image& image,
               const PngOptions& options = {});
 
-// Reads a PNG as RGBA8 (grey and RGB are expanded); throws std::runtime_error naming the path.
+// Reads a PNG as RGBA8 (grey and RGB are expanded); throws std::runtime_error naming the path:
+// "render: cannot read PNG '<path>': <the system's reason>" when it cannot be opened, "...: not a
+// valid PNG file (stb_image: <reason>)" when it cannot be decoded.
 Image readPng(const std::filesystem::path& path);
 
 // "frame_000123.png": six digits, more when the index needs them.

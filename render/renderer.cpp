@@ -1,14 +1,17 @@
 #include "render/renderer.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "render/context.h"
+#include "render/png.h"
 #include "render/shaders.h"
 
 namespace render {
@@ -80,16 +83,24 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 }  // namespace
 
 struct Renderer::Gpu {
-  GLuint shapeProgram = 0, textProgram = 0;
-  GLuint shapeVao = 0, textVao = 0;
-  GLuint shapeBuffer = 0, pointBuffer = 0, glyphBuffer = 0;
+  GLuint shapeProgram = 0, textProgram = 0, spriteProgram = 0;
+  GLuint shapeVao = 0, textVao = 0, spriteVao = 0;
+  GLuint shapeBuffer = 0, pointBuffer = 0, glyphBuffer = 0, spriteBuffer = 0;
   GLuint atlas = 0;
+  GLint maxTextureSize = 0;
+  struct Texture {
+    GLuint name = 0;
+    int width = 0, height = 0;
+  };
+  std::vector<Texture> sprites;                 // SpriteId value - 1
+  std::map<std::string, SpriteId> spritePaths;  // absolute, normalised path of each loaded PNG
   GLuint framebuffer = 0, colorBuffer = 0;
   int width = 0, height = 0;
   GLint maxSize = 0;
   // Uniform locations.
   GLint shapeToPixel = -1, shapeViewport = -1, shapePixelsPerUnit = -1;
   GLint textToPixel = -1, textViewport = -1, textAtlas = -1, textOnEdge = -1, textDistance = -1;
+  GLint spriteToPixel = -1, spriteViewport = -1, spritePixelsPerUnit = -1, spriteImage = -1;
   // Scratch reused across frames.
   std::vector<Font::Quad> quads;
   std::vector<GlyphInstance> glyphs;
@@ -97,7 +108,8 @@ struct Renderer::Gpu {
 
 Renderer::Renderer(const RendererOptions& options)
     : context_(std::make_unique<GlContext>()),
-      font_(std::make_unique<Font>(options.fontPath)),
+      font_(
+          std::make_unique<Font>(options.fontPath.empty() ? defaultFontPath() : options.fontPath)),
       gpu_(std::make_unique<Gpu>()) {
   const GlApi& gl = context_->gl();
   Gpu& g = *gpu_;
@@ -111,13 +123,20 @@ Renderer::Renderer(const RendererOptions& options)
   g.textAtlas = gl.GetUniformLocation(g.textProgram, "uAtlas");
   g.textOnEdge = gl.GetUniformLocation(g.textProgram, "uOnEdge");
   g.textDistance = gl.GetUniformLocation(g.textProgram, "uDistanceScale");
+  g.spriteProgram = link(gl, shaders::kSpriteVertex, shaders::kSpriteFragment, "sprites");
+  g.spriteToPixel = gl.GetUniformLocation(g.spriteProgram, "uToPixel");
+  g.spriteViewport = gl.GetUniformLocation(g.spriteProgram, "uViewport");
+  g.spritePixelsPerUnit = gl.GetUniformLocation(g.spriteProgram, "uPixelsPerUnit");
+  g.spriteImage = gl.GetUniformLocation(g.spriteProgram, "uImage");
   gl.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &g.maxSize);
+  gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &g.maxTextureSize);
 
-  GLuint buffers[3];
-  gl.GenBuffers(3, buffers);
+  GLuint buffers[4];
+  gl.GenBuffers(4, buffers);
   g.shapeBuffer = buffers[0];
   g.pointBuffer = buffers[1];
   g.glyphBuffer = buffers[2];
+  g.spriteBuffer = buffers[3];
 
   // Shapes: every attribute advances once per instance; the quad's corner is gl_VertexID.
   gl.GenVertexArrays(1, &g.shapeVao);
@@ -155,6 +174,21 @@ Renderer::Renderer(const RendererOptions& options)
     gl.EnableVertexAttribArray(i);
     gl.VertexAttribDivisor(i, 1);
   }
+
+  gl.GenVertexArrays(1, &g.spriteVao);
+  gl.BindVertexArray(g.spriteVao);
+  gl.BindBuffer(GL_ARRAY_BUFFER, g.spriteBuffer);
+  constexpr GLsizei kSpriteStride = sizeof(Sprite);
+  gl.VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, kSpriteStride, offset(offsetof(Sprite, center)));
+  gl.VertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, kSpriteStride, offset(offsetof(Sprite, size)));
+  gl.VertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, kSpriteStride, offset(offsetof(Sprite, angle)));
+  gl.VertexAttribPointer(3, 4, GL_FLOAT, GL_FALSE, kSpriteStride, offset(offsetof(Sprite, source)));
+  gl.VertexAttribPointer(4, 4, GL_UNSIGNED_BYTE, GL_TRUE, kSpriteStride,
+                         offset(offsetof(Sprite, tint)));
+  for (GLuint i = 0; i < 5; ++i) {
+    gl.EnableVertexAttribArray(i);
+    gl.VertexAttribDivisor(i, 1);
+  }
   gl.BindVertexArray(0);
 
   // The font atlas, uploaded once: one byte per texel, bilinear so distances interpolate.
@@ -184,13 +218,87 @@ Renderer::~Renderer() {
   Gpu& g = *gpu_;
   gl.DeleteProgram(g.shapeProgram);
   gl.DeleteProgram(g.textProgram);
+  gl.DeleteProgram(g.spriteProgram);
   gl.DeleteVertexArrays(1, &g.shapeVao);
   gl.DeleteVertexArrays(1, &g.textVao);
-  GLuint buffers[3] = {g.shapeBuffer, g.pointBuffer, g.glyphBuffer};
-  gl.DeleteBuffers(3, buffers);
+  gl.DeleteVertexArrays(1, &g.spriteVao);
+  GLuint buffers[4] = {g.shapeBuffer, g.pointBuffer, g.glyphBuffer, g.spriteBuffer};
+  gl.DeleteBuffers(4, buffers);
   gl.DeleteTextures(1, &g.atlas);
+  for (const Gpu::Texture& t : g.sprites)
+    gl.DeleteTextures(1, &t.name);
   gl.DeleteFramebuffers(1, &g.framebuffer);
   gl.DeleteRenderbuffers(1, &g.colorBuffer);
+}
+
+SpriteId Renderer::loadSprite(const std::filesystem::path& path) {
+  const std::string key = std::filesystem::absolute(path).lexically_normal().string();
+  if (auto found = gpu_->spritePaths.find(key); found != gpu_->spritePaths.end()) {
+    return found->second;
+  }
+  const Image image = readPng(path);  // its errors name the file
+  if (image.width > gpu_->maxTextureSize || image.height > gpu_->maxTextureSize) {
+    throw std::runtime_error("render: sprite '" + path.string() + "' is " +
+                             std::to_string(image.width) + "x" + std::to_string(image.height) +
+                             ", larger than the " + std::to_string(gpu_->maxTextureSize) +
+                             " pixels a side a texture may have");
+  }
+  const SpriteId id = addSprite(image);
+  gpu_->spritePaths.emplace(key, id);
+  return id;
+}
+
+SpriteId Renderer::addSprite(const Image& image) {
+  Gpu& g = *gpu_;
+  if (image.width <= 0 || image.height <= 0 || image.width > g.maxTextureSize ||
+      image.height > g.maxTextureSize ||
+      image.rgba.size() != static_cast<std::size_t>(image.width) * image.height * 4) {
+    throw std::invalid_argument("render: a sprite must be 1 to " +
+                                std::to_string(g.maxTextureSize) +
+                                " pixels a side with 4 bytes a pixel, got " +
+                                std::to_string(image.width) + "x" + std::to_string(image.height));
+  }
+  // Premultiplied once here: filtering then blends colours weighted by their coverage, and the
+  // shader's output is what the blend function (ONE, ONE_MINUS_SRC_ALPHA) expects.
+  std::vector<std::uint8_t> texels(image.rgba.size());
+  for (std::size_t i = 0; i < texels.size(); i += 4) {
+    const unsigned a = image.rgba[i + 3];
+    for (std::size_t c = 0; c < 3; ++c)
+      texels[i + c] = static_cast<std::uint8_t>((image.rgba[i + c] * a + 127u) / 255u);
+    texels[i + 3] = static_cast<std::uint8_t>(a);
+  }
+  context_->makeCurrent();
+  const GlApi& gl = context_->gl();
+  Gpu::Texture t{0, image.width, image.height};
+  gl.GenTextures(1, &t.name);
+  gl.BindTexture(GL_TEXTURE_2D, t.name);
+  gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, image.width, image.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                texels.data());
+  // Linear, with mipmaps: sprites are turned and scaled to any size, and a sprite drawn at a
+  // fraction of its pixels (a 64-pixel crate 10 pixels wide) would shimmer with nearest texels.
+  // Pixel art wanting hard texels can be drawn at whole multiples of its size.
+  gl.GenerateMipmap(GL_TEXTURE_2D);
+  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  if (gl.GetError() != GL_NO_ERROR) {
+    gl.DeleteTextures(1, &t.name);
+    throw std::runtime_error("render: OpenGL error uploading a " + std::to_string(image.width) +
+                             "x" + std::to_string(image.height) + " sprite");
+  }
+  g.sprites.push_back(t);
+  return SpriteId{static_cast<std::uint32_t>(g.sprites.size())};
+}
+
+Renderer::SpriteSize Renderer::spriteSize(SpriteId id) const {
+  if (!id.valid() || id.value > gpu_->sprites.size()) {
+    throw std::invalid_argument("render: sprite id " + std::to_string(id.value) +
+                                " was not made by this Renderer");
+  }
+  const Gpu::Texture& t = gpu_->sprites[id.value - 1];
+  return {t.width, t.height};
 }
 
 Image Renderer::render(const Frame& frame, const Camera& camera) {
@@ -210,6 +318,23 @@ void Renderer::render(const Frame& frame, const Camera& camera, Image& out) {
   }
   if (!(std::isfinite(camera.zoom) && camera.zoom > 0.0f) || !rc::isFinite(camera.center)) {
     throw std::invalid_argument("render: camera zoom must be finite and > 0 and its centre finite");
+  }
+  // Sprites are checked against the images they name before anything is drawn.
+  for (const DrawList* list : {&frame.world, &frame.overlay, &frame.hud}) {
+    for (const Sprite& sprite : list->sprites) {
+      const SpriteSize size = spriteSize(sprite.image);
+      const SpriteRect& r = sprite.source;
+      if (r.x + r.width > static_cast<float>(size.width) ||
+          r.y + r.height > static_cast<float>(size.height)) {
+        char rect[96];
+        std::snprintf(rect, sizeof rect, "(%g, %g, %g x %g)", static_cast<double>(r.x),
+                      static_cast<double>(r.y), static_cast<double>(r.width),
+                      static_cast<double>(r.height));
+        throw std::invalid_argument("render: sprite source rectangle " + std::string(rect) +
+                                    " goes outside its " + std::to_string(size.width) + "x" +
+                                    std::to_string(size.height) + " image");
+      }
+    }
   }
   context_->makeCurrent();
   const GlApi& gl = context_->gl();
@@ -249,6 +374,15 @@ void Renderer::render(const Frame& frame, const Camera& camera, Image& out) {
   const float screen[4] = {1.0f, 1.0f, 0.0f, 0.0f};
 
   auto drawList = [&](const DrawList& list, const float* toPixel, float pixelsPerUnit) {
+    // Shapes [first, last) of the list, uploaded once per list.
+    auto drawShapes = [&](std::size_t first, std::size_t last) {
+      if (first >= last) return;
+      gl.UseProgram(g.shapeProgram);
+      gl.BindVertexArray(g.shapeVao);
+      gl.DrawArraysInstancedBaseInstance(
+          GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(last - first), static_cast<GLuint>(first));
+      ++timing_.drawCalls;
+    };
     if (!list.shapes.empty()) {
       gl.UseProgram(g.shapeProgram);
       gl.Uniform4f(g.shapeToPixel, toPixel[0], toPixel[1], toPixel[2], toPixel[3]);
@@ -266,10 +400,43 @@ void Renderer::render(const Frame& frame, const Camera& camera, Image& out) {
       gl.BindBuffer(GL_ARRAY_BUFFER, g.shapeBuffer);
       gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(list.shapes.size() * sizeof(Shape)),
                     list.shapes.data(), GL_STREAM_DRAW);
-      gl.BindVertexArray(g.shapeVao);
-      gl.DrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(list.shapes.size()));
-      ++timing_.drawCalls;
     }
+    if (!list.sprites.empty()) {
+      gl.UseProgram(g.spriteProgram);
+      gl.Uniform4f(g.spriteToPixel, toPixel[0], toPixel[1], toPixel[2], toPixel[3]);
+      gl.Uniform2f(g.spriteViewport, w, h);
+      gl.Uniform1f(g.spritePixelsPerUnit, pixelsPerUnit);
+      gl.Uniform1i(g.spriteImage, 0);
+      gl.BindBuffer(GL_ARRAY_BUFFER, g.spriteBuffer);
+      gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(list.sprites.size() * sizeof(Sprite)),
+                    list.sprites.data(), GL_STREAM_DRAW);
+    }
+    // In the order added: the shapes before a sprite, then a run of sprites with one image and no
+    // shape between them (one call), and so on; the remaining shapes last.
+    std::size_t shapesDrawn = 0;
+    const std::size_t n = list.sprites.size();
+    for (std::size_t i = 0; i < n;) {
+      const Sprite& head = list.sprites[i];
+      const std::size_t before = std::min<std::size_t>(head.shapesBefore, list.shapes.size());
+      if (before > shapesDrawn) {
+        drawShapes(shapesDrawn, before);
+        shapesDrawn = before;
+      }
+      std::size_t end = i + 1;
+      while (end < n && list.sprites[end].image == head.image &&
+             list.sprites[end].shapesBefore == head.shapesBefore) {
+        ++end;
+      }
+      gl.UseProgram(g.spriteProgram);
+      gl.ActiveTexture(GL_TEXTURE0);
+      gl.BindTexture(GL_TEXTURE_2D, g.sprites[head.image.value - 1].name);
+      gl.BindVertexArray(g.spriteVao);
+      gl.DrawArraysInstancedBaseInstance(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(end - i),
+                                         static_cast<GLuint>(i));
+      ++timing_.drawCalls;
+      i = end;
+    }
+    drawShapes(shapesDrawn, list.shapes.size());
     if (!list.texts.empty()) {
       g.glyphs.clear();
       for (const Text& text : list.texts) {

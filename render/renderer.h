@@ -1,11 +1,14 @@
 // Draws Frames off-screen with OpenGL (OSMesa) and reads them back as images.
 //
 // One Renderer owns one GL context, its shader programs and the font atlas, all made once in the
-// constructor (about 0.1 s with the font bake) and reused for every frame. A frame costs a few
-// draw calls whatever its size: per layer, one instanced call for all shapes and one for all
-// glyphs. Use a Renderer from one thread at a time; it makes its context current on each call.
+// constructor (about 0.1 s with the font bake) and reused for every frame, and the sprite images
+// loaded into it (one texture each, uploaded once). A frame costs a few draw calls whatever its
+// size: per layer, one instanced call for all shapes, one per sprite image and one for all glyphs
+// (see draw_list.h for the order). Use a Renderer from one thread at a time; it makes its context
+// current on each call.
 #pragma once
 
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -19,7 +22,7 @@ namespace render {
 class GlContext;
 
 struct RendererOptions {
-  std::string fontPath = kDefaultFontPath;
+  std::string fontPath;  // empty: defaultFontPath() ($RICOCHET_FONT, else the shipped font)
 };
 
 class Renderer {
@@ -41,6 +44,19 @@ class Renderer {
     double readbackSeconds = 0;  // glReadPixels
     int drawCalls = 0;
   };
+  // Reads a PNG once into a texture this Renderer owns and returns its id for DrawList::sprite;
+  // the same path again returns the same id without reading the file. Throws std::runtime_error
+  // naming the file when it is missing, unreadable or not a valid PNG, or too large for GL.
+  SpriteId loadSprite(const std::filesystem::path& path);
+  // The same from an image in memory (generated art); every call makes a new texture.
+  SpriteId addSprite(const Image& image);
+  struct SpriteSize {
+    int width = 0;
+    int height = 0;
+  };
+  // In pixels of the image; throws std::invalid_argument for an id this Renderer did not make.
+  SpriteSize spriteSize(SpriteId id) const;
+
   // Of the last render() call.
   const Timing& lastTiming() const { return timing_; }
 

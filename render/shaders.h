@@ -1,9 +1,11 @@
-// GLSL 4.50 sources of the renderer's two programs.
+// GLSL 4.50 sources of the renderer's three programs.
 //
 // Shapes: one instance per Shape (draw_list.h), drawn as a quad around its bounds; the fragment
 // shader measures the signed distance from the pixel to the shape's edge (in pixels, negative
 // inside) and turns it into coverage over a one-pixel ramp, which is the anti-aliasing. Text:
-// one instance per glyph, sampling the font's distance-field atlas the same way.
+// one instance per glyph, sampling the font's distance-field atlas the same way. Sprites: one
+// instance per Sprite, a quad one pixel larger than the sprite all round; its coverage is the
+// distance to the sprite's rectangle turned into the same one-pixel ramp, times the texel.
 //
 // Both map pixel row 0 (the top of the picture) to the framebuffer's first row, so glReadPixels
 // returns rows top first and no flip is needed on the CPU.
@@ -171,6 +173,76 @@ out vec4 fragColor;
 void main() {
   float d = (texture(uAtlas, vUv).r - uOnEdge) / uDistanceScale * vScale;  // pixels, + inside
   fragColor = vColor * clamp(d + 0.5, 0.0, 1.0);
+}
+)";
+
+// Texels are premultiplied when the image is uploaded, so bilinear filtering never mixes in the
+// colour of a transparent texel (no dark fringe around a cut-out) and the product of texel and
+// premultiplied tint is the premultiplied colour the blend function expects.
+inline constexpr const char* kSpriteVertex = R"(#version 450 core
+layout(location = 0) in vec2 iCenter;
+layout(location = 1) in vec2 iSize;
+layout(location = 2) in float iAngle;
+layout(location = 3) in vec4 iSource;  // x, y, width, height in texels; width 0: the whole image
+layout(location = 4) in vec4 iTint;
+
+uniform vec4 uToPixel;
+uniform vec2 uViewport;
+uniform float uPixelsPerUnit;
+uniform sampler2D uImage;
+
+out vec2 vLocal;  // list units from the centre before turning, +y towards the image's top
+out vec2 vTexel;  // texel coordinates, not clamped to the source rectangle
+flat out vec2 vHalf;
+flat out vec4 vSource;
+flat out vec4 vTint;
+
+void main() {
+  vec2 corner = vec2(float(gl_VertexID & 1), float(gl_VertexID >> 1));  // y 0: the image's top
+  vec2 imageSize = vec2(textureSize(uImage, 0));
+  vec4 source = iSource.z > 0.0 ? iSource : vec4(0.0, 0.0, imageSize);
+  vec2 halfSize = 0.5 * iSize;
+  vec2 grown = halfSize + vec2(1.0 / uPixelsPerUnit);  // room for the anti-aliased edge
+  vec2 local = vec2(corner.x - 0.5, 0.5 - corner.y) * 2.0 * grown;
+  vec2 t = vec2(local.x / iSize.x + 0.5, 0.5 - local.y / iSize.y);
+  vTexel = source.xy + t * source.zw;
+  // Turn counter-clockwise as seen in the picture, then into the list's space, whose y points up
+  // (world: uToPixel.y < 0) or down (HUD).
+  float c = cos(iAngle), s = sin(iAngle);
+  vec2 turned = vec2(c * local.x - s * local.y, s * local.x + c * local.y);
+  vec2 p = iCenter + vec2(turned.x, uToPixel.y < 0.0 ? turned.y : -turned.y);
+  vec2 pixel = p * uToPixel.xy + uToPixel.zw;
+  gl_Position = vec4(pixel / uViewport * 2.0 - 1.0, 0.0, 1.0);
+  vLocal = local;
+  vHalf = halfSize;
+  vSource = source;
+  vTint = vec4(iTint.rgb * iTint.a, iTint.a);
+}
+)";
+
+inline constexpr const char* kSpriteFragment = R"(#version 450 core
+uniform float uPixelsPerUnit;
+uniform sampler2D uImage;
+
+in vec2 vLocal;
+in vec2 vTexel;
+flat in vec2 vHalf;
+flat in vec4 vSource;
+flat in vec4 vTint;
+
+out vec4 fragColor;
+
+void main() {
+  vec2 q = abs(vLocal) - vHalf;
+  float d = (length(max(q, 0.0)) + min(max(q.x, q.y), 0.0)) * uPixelsPerUnit;
+  float coverage = clamp(0.5 - d, 0.0, 1.0);
+  // Stay half a texel inside the source rectangle so filtering never reads its neighbours; the
+  // gradients of the unclamped coordinates choose the mipmap level, with no jump at the clamp.
+  vec2 imageSize = vec2(textureSize(uImage, 0));
+  vec2 texel = clamp(vTexel, vSource.xy + 0.5, vSource.xy + vSource.zw - 0.5);
+  vec4 color = textureGrad(uImage, texel / imageSize, dFdx(vTexel) / imageSize,
+                           dFdy(vTexel) / imageSize);
+  fragColor = color * vTint * coverage;
 }
 )";
 

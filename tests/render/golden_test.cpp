@@ -213,6 +213,37 @@ TEST(Golden, OverlayAndHud) {
   expectGolden("overlay_hud", frame);
 }
 
+TEST(Golden, Sprites) {
+  render_test::ScratchDir dir;
+  render::writePng(dir.path() / "crate.png", render_test::crateSprite());
+  render::writePng(dir.path() / "quadrants.png", render_test::quadrantSprite());
+  render::Renderer& renderer = render_test::sharedRenderer();
+  const render::SpriteId crate = renderer.loadSprite(dir.path() / "crate.png");
+  const render::SpriteId quadrants = renderer.loadSprite(dir.path() / "quadrants.png");
+  Frame frame = baseFrame();
+  // A disc under a crate, a crate turned half a radian, the quadrants turned a quarter (red
+  // top-left goes to the bottom-left), a translucent tinted crate with text on top.
+  frame.world.circle({-5.5f, 0.5f}, 1.6f, Style::filled(colors::kBlue));
+  frame.world.sprite(crate, {-5.5f, 1.0f}, {2.4f, 2.4f});
+  frame.world.sprite(crate, {-1.5f, 1.5f}, {3.0f, 3.0f}, 0.5f);
+  frame.world.sprite(quadrants, {2.5f, 1.5f}, {3.0f, 3.0f}, 1.5707964f);
+  frame.world.sprite(crate, {6.0f, 1.5f}, {2.5f, 2.5f}, -0.3f, Color{120, 200, 255, 160});
+  frame.world.text({6.0f, 1.5f}, "x2", 12.0f, colors::kWhite, render::HAlign::kCenter,
+                   render::VAlign::kMiddle);
+  // Bottom row: one quadrant of the image (its source rectangle), crates drawn small (mipmaps),
+  // a stretched crate, and a disc added after a crate, so on top of it.
+  frame.world.sprite(quadrants, {-6.0f, -2.8f}, {1.5f, 1.5f}, 0.0f, colors::kWhite,
+                     {16.0f, 0.0f, 16.0f, 16.0f});
+  frame.world.sprite(crate, {-3.8f, -2.8f}, {0.8f, 0.8f}, 0.3f);
+  frame.world.sprite(crate, {-2.8f, -2.8f}, {0.8f, 0.8f}, 0.8f);
+  frame.world.sprite(crate, {0.5f, -2.8f}, {3.5f, 1.2f}, 0.0f, Color{255, 220, 220, 255});
+  frame.world.sprite(crate, {4.5f, -2.8f}, {2.0f, 2.0f});
+  frame.world.circle({5.2f, -3.3f}, 0.6f, Style::filled(colors::kOrange));
+  // A HUD sprite, pixels from the top-left: the red mark at its top-left.
+  frame.hud.sprite(crate, {148.0f, 10.0f}, {14.0f, 14.0f});
+  expectGolden("sprites", frame);
+}
+
 TEST(Golden, MismatchWritesActualAndDiffImages) {
   render_test::ScratchDir dir;
   Image golden(8, 4);

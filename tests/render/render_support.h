@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <string>
 
+#include "render/image.h"
 #include "render/renderer.h"
 
 namespace render_test {
@@ -42,6 +43,46 @@ class ScratchDir {
  private:
   std::filesystem::path path_;
 };
+
+// A 32x32 sprite in four 16x16 quadrants: red top-left, green top-right, blue bottom-left, white
+// bottom-right; orientation and tint are read off it.
+inline render::Image quadrantSprite() {
+  render::Image image(32, 32);
+  for (int y = 0; y < 32; ++y) {
+    for (int x = 0; x < 32; ++x) {
+      const bool right = x >= 16, bottom = y >= 16;
+      render::Color c =
+          !bottom ? (right ? render::Color{0, 255, 0, 255} : render::Color{255, 0, 0, 255})
+                  : (right ? render::Color{255, 255, 255, 255} : render::Color{0, 0, 255, 255});
+      image.setPixel(x, y, c);
+    }
+  }
+  return image;
+}
+
+// A 32x32 crate: a transparent 1-pixel margin, a dark frame, planks, a diagonal brace from the
+// bottom-left to the top-right and a red mark in the top-left corner inside the frame.
+inline render::Image crateSprite() {
+  render::Image image(32, 32);
+  for (int y = 0; y < 32; ++y) {
+    for (int x = 0; x < 32; ++x) {
+      render::Color c{0, 0, 0, 0};
+      if (x >= 1 && x <= 30 && y >= 1 && y <= 30) {
+        const bool frame = x <= 3 || x >= 28 || y <= 3 || y >= 28;
+        const bool brace = std::abs((x + y) - 31) <= 1;
+        const bool seam = y % 8 == 0;
+        const bool mark = x >= 5 && x <= 9 && y >= 5 && y <= 9;
+        c = frame   ? render::Color{100, 60, 25, 255}
+            : mark  ? render::Color{230, 40, 40, 255}
+            : brace ? render::Color{125, 78, 36, 255}
+            : seam  ? render::Color{160, 105, 50, 255}
+                    : render::Color{205, 145, 75, 255};
+      }
+      image.setPixel(x, y, c);
+    }
+  }
+  return image;
+}
 
 // Largest difference of one channel.
 inline int channelDistance(render::Color a, render::Color b) {

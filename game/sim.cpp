@@ -1,6 +1,9 @@
 // `ricochet sim SCENE.json --steps N [--integrator NAME] [--out STATE.json]
 //                [--trace BODY,BODY,... --csv FILE]`
 // Steps a scene file and writes the final state (and a trajectory of chosen bodies).
+#include <spawn.h>
+#include <sys/wait.h>
+
 #include <algorithm>
 #include <charconv>
 #include <cstdio>
@@ -40,6 +43,8 @@ constexpr const char* kSimUsage =
     "  --no-overlay       with --frames: without the debug overlay (AABBs, contacts,\n"
     "                     velocities)\n"
     "  --sheet FILE       with --frames: also a contact sheet of up to 24 of the frames\n"
+    "  --video FILE       with --frames: also an MP4 (or a GIF, by the name) of the frames,\n"
+    "                     if ffmpeg is installed; without it a warning, and the frames stay\n"
     "Exit codes: 0 done, 1 bad scene or unwritable output, 2 bad command line.\n";
 
 int usageError(const std::string& what) {
@@ -52,6 +57,38 @@ bool whole(const std::string& text, long least, long& out) {
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
   return ec == std::errc() && end == text.data() + text.size() && out >= least;
 }
+
+#ifdef RICOCHET_HAS_RENDER
+// The frames as a video through ffmpeg, if it is installed (never required): run without a
+// shell, so no path is ever interpreted. Returns what happened, for the log.
+std::string encodeVideo(const std::string& dir, double fps, const std::string& out) {
+  char rate[32];
+  std::snprintf(rate, sizeof rate, "%.6g", fps);
+  const std::string pattern = dir + "/frame_%06d.png";
+  const bool gif = out.size() >= 4 && out.compare(out.size() - 4, 4, ".gif") == 0;
+  std::vector<std::string> args = {"ffmpeg",     "-y", "-loglevel", "error",
+                                   "-framerate", rate, "-i",        pattern};
+  if (gif) {
+    args.insert(args.end(), {"-vf", "split[a][b];[a]palettegen[p];[b][p]paletteuse"});
+  } else {
+    // yuv420p needs even sizes; pad by a pixel when a frame's side is odd.
+    args.insert(args.end(),
+                {"-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-pix_fmt", "yuv420p", "-c:v", "libx264"});
+  }
+  args.push_back(out);
+  std::vector<char*> argv;
+  for (std::string& a : args)
+    argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  if (posix_spawnp(&pid, "ffmpeg", nullptr, nullptr, argv.data(), environ) != 0)
+    return "--video: ffmpeg is not installed (Debian package ffmpeg); the frames are in " + dir;
+  int status = 0;
+  if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    return "--video: ffmpeg failed to write " + out + "; the frames are in " + dir;
+  return "video in " + out;
+}
+#endif
 
 // Body indices from a list of indices or names.
 bool resolveTrace(const std::string& list, const SceneDesc& scene, std::vector<std::size_t>& out,
@@ -82,7 +119,7 @@ bool resolveTrace(const std::string& list, const SceneDesc& scene, std::vector<s
 }  // namespace
 
 int runSim(std::span<const std::string_view> args) {
-  std::string scenePath, outPath, csvPath, trace, integrator, framesDir, sheetPath;
+  std::string scenePath, outPath, csvPath, trace, integrator, framesDir, sheetPath, videoPath;
   long steps = -1, every = 1;
   int width = 640, height = 360;
   bool overlay = true;
@@ -112,6 +149,8 @@ int runSim(std::span<const std::string_view> args) {
       if (!value(framesDir)) return usageError("--frames needs a directory");
     } else if (a == "--sheet") {
       if (!value(sheetPath)) return usageError("--sheet needs a file name");
+    } else if (a == "--video") {
+      if (!value(videoPath)) return usageError("--video needs a file name");
     } else if (a == "--no-overlay") {
       overlay = false;
     } else if (a == "--every") {
@@ -141,6 +180,7 @@ int runSim(std::span<const std::string_view> args) {
   if (steps < 0) return usageError("--steps is required");
   if (trace.empty() != csvPath.empty()) return usageError("--trace and --csv go together");
   if (framesDir.empty() && !sheetPath.empty()) return usageError("--sheet needs --frames");
+  if (framesDir.empty() && !videoPath.empty()) return usageError("--video needs --frames");
 #ifndef RICOCHET_HAS_RENDER
   if (!framesDir.empty())
     return usageError(
@@ -216,6 +256,11 @@ int runSim(std::span<const std::string_view> args) {
       if (!sheetPath.empty()) render::writePng(sheetPath, render::contactSheet(sheet));
       std::fprintf(stderr, "ricochet sim: %lld frames in %s\n",
                    static_cast<long long>(writer->stats().framesWritten), framesDir.c_str());
+      if (!videoPath.empty()) {
+        const double fps = 1.0 / (static_cast<double>(scene.dt) * static_cast<double>(every));
+        const std::string result = encodeVideo(framesDir, fps, videoPath);
+        std::fprintf(stderr, "ricochet sim: %s\n", result.c_str());
+      }
     }
 #endif
     const SceneState state = captureState(scene, built, static_cast<int>(steps));

@@ -115,42 +115,44 @@ Manifold toWorld(const Local& m, const Transform& xfA, const Transform& xfB) {
 }
 
 // Point c with radius rc against the convex core (v, n, count) rounded by radius (same frame).
-// Normal from the hull towards the point.
-Local pointVsCore(const Vec2* v, const Vec2* n, int count, float radius, Vec2 c, float rc,
-                  float margin) {
-  struct {
-    const Vec2* v;
-    const Vec2* n;
-    int count;
-    float radius;
-  } h{v, n, count, radius};
-  Local m;
+// Normal from the hull towards the point. One point at most: returned as a small value the
+// callers turn into their own form (no manifold-sized temporary on the circle paths).
+struct PointContact {
+  Vec2 normal, point;
+  float separation;
+  std::uint16_t id;
+  bool hit;
+};
+
+[[gnu::always_inline]] inline PointContact pointContact(const Vec2* v, const Vec2* n, int count,
+                                                        float radius, Vec2 c, float rc,
+                                                        float margin) {
   Vec2 normal;
   float dist;
   std::uint16_t id = 0;
-  if (h.count == 1) {
-    Vec2 d = c - h.v[0];
+  if (count == 1) {
+    Vec2 d = c - v[0];
     dist = length(d);
     normal = dist > 0.0f ? (1.0f / dist) * d : Vec2{0.0f, 1.0f};
   } else {
     int best = 0;
     float maxSep = -1e30f;
-    const float reach = h.radius + rc + margin;
+    const float reach = radius + rc + margin;
 #pragma GCC unroll 1  // see support() in distance.cpp: GCC -O3 peeling costs more than it saves
-    for (int i = 0; i < h.count; ++i) {
-      float s = dot(h.n[i], c - h.v[i]);
-      if (s > reach) return m;  // a face farther than any contact reaches
+    for (int i = 0; i < count; ++i) {
+      float s = dot(n[i], c - v[i]);
+      if (s > reach) return {{}, {}, 0.0f, 0, false};  // a face farther than any contact reaches
       if (s > maxSep) {
         maxSep = s;
         best = i;
       }
     }
-    normal = h.n[best];
+    normal = n[best];
     dist = maxSep;
     id = static_cast<std::uint16_t>(best);
     if (maxSep > 0.0f) {
       // Outside the core: the face's Voronoi region, or the vertex at either end of it.
-      Vec2 v1 = h.v[best], v2 = h.v[nextIndex(best, h.count)];
+      Vec2 v1 = v[best], v2 = v[nextIndex(best, count)];
       Vec2 e = v2 - v1;
       float u = dot(c - v1, e);
       Vec2 corner{};
@@ -162,7 +164,7 @@ Local pointVsCore(const Vec2* v, const Vec2* n, int count, float radius, Vec2 c,
       } else if (u >= lengthSquared(e)) {
         corner = v2;
         vertex = true;
-        id = static_cast<std::uint16_t>(0x100 | nextIndex(best, h.count));
+        id = static_cast<std::uint16_t>(0x100 | nextIndex(best, count));
       }
       if (vertex) {
         Vec2 d = c - corner;
@@ -171,10 +173,18 @@ Local pointVsCore(const Vec2* v, const Vec2* n, int count, float radius, Vec2 c,
       }
     }
   }
-  float sep = dist - h.radius - rc;
-  if (sep > margin) return m;
-  m.normal = normal;
-  m.add(mulSub(c, 0.5f * (rc + dist - h.radius), normal), sep, id);
+  const float sep = dist - radius - rc;
+  if (sep > margin) return {{}, {}, 0.0f, 0, false};
+  return {normal, mulSub(c, 0.5f * (rc + dist - radius), normal), sep, id, true};
+}
+
+Local pointVsCore(const Vec2* v, const Vec2* n, int count, float radius, Vec2 c, float rc,
+                  float margin) {
+  Local m;
+  const PointContact pc = pointContact(v, n, count, radius, c, rc, margin);
+  if (!pc.hit) return m;
+  m.normal = pc.normal;
+  m.add(pc.point, pc.separation, pc.id);
   return m;
 }
 
@@ -346,9 +356,20 @@ Manifold collideCircles(const Circle& a, const Transform& xfA, const Circle& b,
 
 Manifold collidePolygonAndCircle(const Polygon& a, const Transform& xfA, const Circle& b,
                                  const Transform& xfB, float margin) {
-  Vec2 c = invApply(xfA, apply(xfB, b.center));
-  return toWorld(pointVsCore(a.vertices, a.normals, a.count, a.radius, c, b.radius, margin), xfA,
-                 xfB);
+  const PointContact pc = pointContact(a.vertices, a.normals, a.count, a.radius,
+                                       invApply(xfA, apply(xfB, b.center)), b.radius, margin);
+  if (!pc.hit) return Manifold{};
+  // The manifold built in place from the one point (see PointContact).
+  Manifold out;
+  out.normal = rotate(xfA.q, pc.normal);
+  out.pointCount = 1;
+  ManifoldPoint& mp = out.points[0];
+  mp.anchorA = rotate(xfA.q, pc.point);
+  mp.anchorB = mp.anchorA + (xfA.p - xfB.p);
+  mp.point = mp.anchorA + xfA.p;
+  mp.separation = pc.separation;
+  mp.id = pc.id;
+  return out;
 }
 
 Manifold collideSegmentAndCircle(const Segment& a, const Transform& xfA, const Circle& b,

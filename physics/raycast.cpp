@@ -85,7 +85,24 @@ CastOutput rayCast(const Circle& s, const RayCastInput& in) {
   return castCircle(s.center, s.radius, in, length, (1.0f / length) * in.translation);
 }
 
+// The sharp casts, inlined into the world-frame dispatcher (a call and a returned CastOutput
+// per cast cost a fifth of an oriented box's ray cast) and wrapped for the public functions.
+namespace {
+[[gnu::always_inline]] inline CastOutput castBox(const Box& s, const RayCastInput& in);
+[[gnu::always_inline]] inline CastOutput castPolygon(const Polygon& s, const RayCastInput& in);
+}  // namespace
+
 CastOutput rayCast(const Box& s, const RayCastInput& in) {
+  return castBox(s, in);
+}
+
+CastOutput rayCast(const Polygon& s, const RayCastInput& in) {
+  return castPolygon(s, in);
+}
+
+namespace {
+
+CastOutput castBox(const Box& s, const RayCastInput& in) {
   Vec2 lo = s.center - s.halfExtents, hi = s.center + s.halfExtents;
   if (AABB{lo, hi}.contains(in.origin)) return startsInside(in);
   // Slab test (Kay and Kajiya): the latest entry and the earliest exit over both axes.
@@ -117,7 +134,7 @@ CastOutput rayCast(const Box& s, const RayCastInput& in) {
   return hitAt(normal, mulAdd(in.origin, tEnter, in.translation), tEnter);
 }
 
-CastOutput rayCast(const Polygon& s, const RayCastInput& in) {
+CastOutput castPolygon(const Polygon& s, const RayCastInput& in) {
   if (s.radius > 0.0f) {
     // A rounded polygon is its core plus a capsule on every edge.
     if (containsPoint(Shape(s), Transform{}, in.origin)) return startsInside(in);
@@ -155,6 +172,8 @@ CastOutput rayCast(const Polygon& s, const RayCastInput& in) {
   }
   return hitAt(s.normals[index], mulAdd(in.origin, lower, in.translation), lower);
 }
+
+}  // namespace
 
 CastOutput rayCast(const Capsule& s, const RayCastInput& in) {
   if (insideCapsule(s.center1, s.center2, s.radius, in.origin)) return startsInside(in);
@@ -252,9 +271,9 @@ CastOutput rayCastLocal(const Shape& s, const Transform& xf, const RayCastInput&
       case ShapeType::circle:
         return rayCast(s.circle, local);
       case ShapeType::box:
-        return rayCast(s.box, local);
+        return castBox(s.box, local);
       case ShapeType::polygon:
-        return rayCast(s.polygon, local);
+        return castPolygon(s.polygon, local);
       case ShapeType::capsule:
         return rayCast(s.capsule, local);
       case ShapeType::segment:

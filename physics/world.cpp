@@ -866,129 +866,6 @@ void World::forEachConstraint(Solve&& solve) {
   }
 }
 
-void World::solveContacts(float h, bool useBias) {
-  // Soft contact (Catto, "Solver2D", 2024): a spring-damper of stiffness omega and damping
-  // ratio zeta, written as a bias and a mass / impulse scale for an implicit step of size h.
-  const float hertz = std::min(def_.contactHertz, 0.25f / h);
-  const float omega = 2.0f * kPi * hertz, zeta = def_.contactDampingRatio;
-  const float a1 = 2.0f * zeta + h * omega, a2 = h * omega * a1, a3 = 1.0f / (1.0f + a2);
-  const float biasRate = omega / a1, softMassScale = a2 * a3, softImpulseScale = a3;
-  const float invH = 1.0f / h;
-  // For the block solve: 1 / s_m and (1 - s_i) / s_m of the soft regime (the rigid one has 1).
-  const float invSoftMass = 1.0f / softMassScale;
-  const float softCarry = (1.0f - softImpulseScale) * invSoftMass;
-  forEachConstraint([&](ContactConstraint& cc, Vec2& vA, float& wA, Vec2& vB, float& wB) {
-    const Vec2 n = cc.normal;
-    const Vec2 dpA = cc.slotA >= 0 ? deltaPosition_[static_cast<std::size_t>(cc.slotA)] : Vec2{};
-    const Vec2 dpB = cc.slotB >= 0 ? deltaPosition_[static_cast<std::size_t>(cc.slotB)] : Vec2{};
-    const Rot dqA = cc.slotA >= 0 ? deltaRotation_[static_cast<std::size_t>(cc.slotA)] : Rot{};
-    const Rot dqB = cc.slotB >= 0 ? deltaRotation_[static_cast<std::size_t>(cc.slotB)] : Rot{};
-    // Each point's regime: speculative (apart: approach no faster than closes the gap this
-    // substep), soft (touching, with the push-out bias), or rigid (relax, no bias).
-    float bias[2] = {0, 0}, massScale[2] = {1, 1}, impulseScale[2] = {0, 0}, vn[2] = {0, 0};
-    for (int k = 0; k < cc.pointCount; ++k) {
-      ConstraintPoint& p = cc.points[k];
-      // Separation now, from how far the bodies moved and turned since the manifold was made.
-      const Vec2 d = (dpB - dpA) + (rotate(dqB, p.rB) - p.rB) - (rotate(dqA, p.rA) - p.rA);
-      const float s = dot(d, n) + p.baseSeparation;
-      if (s > 0.0f) {
-        bias[k] = s * invH;
-      } else if (s > -kLinearSlop) {
-        // Within the slop: a rigid contact that carries its load without pressing in further.
-      } else if (useBias) {
-        bias[k] = std::max(biasRate * s, -def_.maxPushoutSpeed);
-        massScale[k] = softMassScale;
-        impulseScale[k] = softImpulseScale;
-      }
-    }
-    auto normalVelocity = [&](const ConstraintPoint& p) {
-      return dot(vB - vA, n) + wB * p.rnB - wA * p.rnA;
-    };
-    auto setImpulse = [&](ConstraintPoint& p, float total) {
-      const float applied = total - p.normalImpulse;
-      p.normalImpulse = total;
-      p.maxNormalImpulse = std::max(p.maxNormalImpulse, applied);
-      const Vec2 P = applied * n;
-      vA -= cc.invMassA * P;
-      wA -= cc.invIA * applied * p.rnA;
-      vB += cc.invMassB * P;
-      wB += cc.invIB * applied * p.rnB;
-    };
-    if (cc.pointCount == 2 && cc.blockSolve && massScale[0] == massScale[1] &&
-        impulseScale[0] == impulseScale[1]) {
-      // Both points at once (a 2x2 linear complementarity problem): solved one after the other,
-      // the first point's impulse turns the body and the second pushes harder, and a tall
-      // stack of boxes, perfectly symmetric, starts to rock. With K the points' coupled
-      // effective mass, the soft update x = (1 - s_i) l - s_m K^-1 (vn + b) is the solution of
-      // A x + q = r with A = K / s_m, x >= 0, r >= 0, x r = 0; the four cases of which points
-      // push are tried in turn.
-      ConstraintPoint &p0 = cc.points[0], &p1 = cc.points[1];
-      vn[0] = normalVelocity(p0);
-      vn[1] = normalVelocity(p1);
-      const float l0 = p0.normalImpulse, l1 = p1.normalImpulse;
-      // With A = K / s_m: q = vn + b - ((1 - s_i) / s_m) K l, and A^-1 = s_m K^-1 (kept from
-      // the prepare, so the four cases cost no division).
-      const bool soft = massScale[0] != 1.0f;
-      const float sm = massScale[0], c = soft ? softCarry : 1.0f;
-      const float q0 = vn[0] + bias[0] - c * (cc.k11 * l0 + cc.k12 * l1);
-      const float q1 = vn[1] + bias[1] - c * (cc.k12 * l0 + cc.k22 * l1);
-      float x0 = -sm * (cc.i11 * q0 + cc.i12 * q1), x1 = -sm * (cc.i12 * q0 + cc.i22 * q1);
-      const float a12 = soft ? cc.k12 * invSoftMass : cc.k12;
-      bool solved = x0 >= 0.0f && x1 >= 0.0f;
-      if (!solved) {  // only the first point pushes
-        x0 = -sm * p0.normalMass * q0;
-        x1 = 0.0f;
-        solved = x0 >= 0.0f && a12 * x0 + q1 >= 0.0f;
-      }
-      if (!solved) {  // only the second
-        x0 = 0.0f;
-        x1 = -sm * p1.normalMass * q1;
-        solved = x1 >= 0.0f && a12 * x1 + q0 >= 0.0f;
-      }
-      if (!solved) {  // neither
-        x0 = x1 = 0.0f;
-        solved = q0 >= 0.0f && q1 >= 0.0f;
-      }
-      if (solved) {
-        setImpulse(p0, x0);
-        setImpulse(p1, x1);
-      } else {
-        // Rounding left no case standing: the points one after the other, as below.
-        for (int k = 0; k < 2; ++k) {
-          ConstraintPoint& p = cc.points[k];
-          const float total = std::max(
-              p.normalImpulse - p.normalMass * massScale[k] * (normalVelocity(p) + bias[k]) -
-                  impulseScale[k] * p.normalImpulse,
-              0.0f);
-          setImpulse(p, total);
-        }
-      }
-    } else {
-      for (int k = 0; k < cc.pointCount; ++k) {
-        ConstraintPoint& p = cc.points[k];
-        const float impulse = -p.normalMass * massScale[k] * (normalVelocity(p) + bias[k]) -
-                              impulseScale[k] * p.normalImpulse;
-        setImpulse(p, std::max(p.normalImpulse + impulse, 0.0f));
-      }
-    }
-    // Coulomb friction, bounded by each point's normal impulse.
-    const Vec2 t = rightPerp(n);
-    for (int k = 0; k < cc.pointCount; ++k) {
-      ConstraintPoint& p = cc.points[k];
-      const float vt = dot(vB - vA, t) + wB * p.rtB - wA * p.rtA;
-      const float limit = cc.friction * p.normalImpulse;
-      const float total = std::clamp(p.tangentImpulse - p.tangentMass * vt, -limit, limit);
-      const float applied = total - p.tangentImpulse;
-      p.tangentImpulse = total;
-      const Vec2 P = applied * t;
-      vA -= cc.invMassA * P;
-      wA -= cc.invIA * applied * p.rtA;
-      vB += cc.invMassB * P;
-      wB += cc.invIB * applied * p.rtB;
-    }
-  });
-}
-
 void World::applyRestitution() {
   const float threshold = def_.restitutionThreshold;
   forEachConstraint([&](ContactConstraint& cc, Vec2& vA, float& wA, Vec2& vB, float& wB) {
@@ -996,8 +873,13 @@ void World::applyRestitution() {
     const Vec2 n = cc.normal;
     for (int k = 0; k < cc.pointCount; ++k) {
       ConstraintPoint& p = cc.points[k];
-      // Only points that were approaching fast enough and that the solver pushed.
+      // Only points that were approaching fast enough and that the solver pushed, and that
+      // were not already overlapping past the slop when the step began: an impact, not an
+      // overlap the push-out is resolving. (A circle born inside two overlapping static boxes
+      // is pushed both ways at once; bouncing it off both faces doubled its speed every few
+      // steps.)
       if (p.relativeVelocity > -threshold || p.maxNormalImpulse == 0.0f) continue;
+      if (p.baseSeparation < -kLinearSlop) continue;
       const float vn = dot(vB - vA, n) + wB * p.rnB - wA * p.rnA;
       const float impulse = -p.normalMass * (vn + cc.restitution * p.relativeVelocity);
       const float total = std::max(p.normalImpulse + impulse, 0.0f);
@@ -1026,10 +908,12 @@ void World::solve(float dt) {
     cc.slotA = awake(a) ? a.slot : -1;
     cc.slotB = awake(b) ? b.slot : -1;
     if (cc.slotA < 0 && cc.slotB < 0) continue;  // asleep against asleep or static
-    cc.invMassA = a.invMass;
-    cc.invIA = a.invInertia;
-    cc.invMassB = b.invMass;
-    cc.invIB = b.invInertia;
+    // A sleeping body stays put for this step: it counts as static (and the solver's null body,
+    // which static sides share, must never be moved).
+    cc.invMassA = cc.slotA >= 0 ? a.invMass : 0.0f;
+    cc.invIA = cc.slotA >= 0 ? a.invInertia : 0.0f;
+    cc.invMassB = cc.slotB >= 0 ? b.invMass : 0.0f;
+    cc.invIB = cc.slotB >= 0 ? b.invInertia : 0.0f;
     cc.normal = c.manifold.normal;
     cc.friction = c.friction;
     cc.restitution = c.restitution;
@@ -1088,16 +972,32 @@ void World::solve(float dt) {
     constraints_.push_back(cc);
   }
 
+  contactSolver_.prepare(constraints_, static_cast<int>(slots));
+
   startCenter_.resize(slots);
   startAngle_.resize(slots);
-  deltaPosition_.assign(slots, Vec2{});
-  deltaRotation_.assign(slots, Rot{});
+  solverBodies_.assign(slots + 1, SolverBody{});  // the last: the null body
   for (std::size_t s = 0; s < slots; ++s) {
     startCenter_[s] = {q_[3 * s], q_[3 * s + 1]};
     startAngle_[s] = q_[3 * s + 2];
   }
+  auto loadVelocities = [&] {
+    for (std::size_t s = 0; s < slots; ++s) {
+      solverBodies_[s].v = {v_[3 * s], v_[3 * s + 1]};
+      solverBodies_[s].w = v_[3 * s + 2];
+    }
+  };
+  auto storeVelocities = [&] {
+    for (std::size_t s = 0; s < slots; ++s) {
+      v_[3 * s] = solverBodies_[s].v.x;
+      v_[3 * s + 1] = solverBodies_[s].v.y;
+      v_[3 * s + 2] = solverBodies_[s].w;
+    }
+  };
 
   const float h = dt / static_cast<float>(def_.substeps);
+  const ContactSoftness soft =
+      ContactSoftness::make(h, def_.contactHertz, def_.contactDampingRatio, def_.maxPushoutSpeed);
   auto accel = [this](std::span<const float> q, std::span<const float> v, float t,
                       std::span<float> a) { accelerations(q, v, t, a); };
   for (int sub = 0; sub < def_.substeps; ++sub) {
@@ -1116,40 +1016,28 @@ void World::solve(float dt) {
     }
     freeV_.assign(v.begin(), v.end());
     // Warm start with the impulses carried so far, then solve with the soft bias.
-    forEachConstraint([](ContactConstraint& cc, Vec2& vA, float& wA, Vec2& vB, float& wB) {
-      const Vec2 tangent = rightPerp(cc.normal);
-      // The approach speed that restitution reverses: the fastest free-motion normal velocity
-      // of the step, which includes what gravity added before the impact (the velocity at the
-      // start of the step falls short by up to g h).
-      const Vec2 dv = vB - vA;
-      for (int k = 0; k < cc.pointCount; ++k) {
-        ConstraintPoint& p = cc.points[k];
-        const float vn = dot(dv, cc.normal) + wB * p.rnB - wA * p.rnA;
-        p.relativeVelocity = std::min(p.relativeVelocity, vn);
-      }
-      for (int k = 0; k < cc.pointCount; ++k) {
-        const ConstraintPoint& p = cc.points[k];
-        const Vec2 P = p.normalImpulse * cc.normal + p.tangentImpulse * tangent;
-        vA -= cc.invMassA * P;
-        wA -= cc.invIA * (p.normalImpulse * p.rnA + p.tangentImpulse * p.rtA);
-        vB += cc.invMassB * P;
-        wB += cc.invIB * (p.normalImpulse * p.rnB + p.tangentImpulse * p.rtB);
-      }
-    });
-    solveContacts(h, true);
+    loadVelocities();
+    contactSolver_.warmStart(solverBodies_);
+    // Symmetric Gauss-Seidel: the relax pass sweeps the colours the other way from the solve
+    // pass, and each substep starts the way the last one ended.
+    const bool backward = sub % 2 == 1;
+    contactSolver_.solve(solverBodies_, soft, true, backward);
+    storeVelocities();
     // Positions: the free motion plus what the contacts changed in the velocity.
     for (std::size_t k = 0; k < 3 * slots; ++k)
       q_[k] += h * (v_[k] - freeV_[k]);
     for (std::size_t s = 0; s < slots; ++s) {
-      deltaPosition_[s] = Vec2{q_[3 * s], q_[3 * s + 1]} - startCenter_[s];
+      solverBodies_[s].dp = Vec2{q_[3 * s], q_[3 * s + 1]} - startCenter_[s];
       // Bodies that do not turn (fixed rotation, or just not spinning) cost no trigonometry.
       const float turned = q_[3 * s + 2] - startAngle_[s];
-      deltaRotation_[s] = turned == 0.0f ? Rot{} : Rot::fromAngle(turned);
+      solverBodies_[s].dq = turned == 0.0f ? Rot{} : Rot::fromAngle(turned);
     }
     // Relax: the same solve without the push-out bias, so separating bodies keep no speed
     // from it (the bias pushes positions apart; relax removes its velocity).
-    solveContacts(h, false);
+    contactSolver_.solve(solverBodies_, soft, false, !backward);
+    storeVelocities();
   }
+  contactSolver_.store(constraints_);
   applyRestitution();
   for (const ContactConstraint& cc : constraints_) {
     Contact& c = contacts_[static_cast<std::size_t>(cc.contact)];

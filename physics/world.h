@@ -51,6 +51,7 @@
 #include <vector>
 
 #include "physics/broadphase.h"
+#include "physics/contact_solver.h"
 #include "physics/integrate.h"
 #include "physics/manifold.h"
 #include "physics/shapes.h"
@@ -329,29 +330,6 @@ class World {
     float friction = 0, restitution = 0;
     bool touching = false;
   };
-  // One touching contact prepared for the substeps.
-  struct ConstraintPoint {
-    Vec2 rA, rB;  // anchors from the centres of mass at the start of the step
-    // rA x n, rB x n, rA x t, rB x t: a point's velocity along n is dot(vB - vA, n) +
-    // wB (rB x n) - wA (rA x n), and an impulse along n turns A by -iA (rA x n) per unit.
-    float rnA, rnB, rtA, rtB;
-    float baseSeparation;
-    float normalMass, tangentMass;
-    float normalImpulse, tangentImpulse, maxNormalImpulse;
-    float relativeVelocity;  // normal velocity before the solve, for restitution
-  };
-  struct ContactConstraint {
-    std::int32_t contact;
-    std::int32_t slotA, slotB;  // -1: a static body
-    float invMassA, invIA, invMassB, invIB;
-    Vec2 normal;
-    float friction, restitution;
-    int pointCount;
-    float k11 = 0, k12 = 0, k22 = 0;  // two points' coupled effective mass K
-    float i11 = 0, i12 = 0, i22 = 0;  // and its inverse
-    bool blockSolve = false;
-    ConstraintPoint points[2];
-  };
 
   std::size_t checked(BodyId id) const;
   const ShapeRecord& shapeRecord(ShapeId id) const;
@@ -368,7 +346,6 @@ class World {
   Vec2 velocityOf(const Body& b) const;
   template <class Solve>
   void forEachConstraint(Solve&& solve);
-  void solveContacts(float h, bool useBias);
   void applyRestitution();
   void updateMass(Body& b);
   void refitBody(Body& b, Vec2 displacement);
@@ -408,11 +385,12 @@ class World {
   // along their first step's motion before pairs are found.
   std::vector<std::int32_t> pendingRefit_;
   std::vector<ContactConstraint> constraints_;
-  // Per slot during the solve: the free-motion velocities of the substep, and how far each body
-  // has moved and turned since the constraints were prepared.
+  ContactSolver contactSolver_;
+  // Per slot during the solve: the free-motion velocities of the substep, and the solver's
+  // bodies (velocity, and how far each has moved and turned since the constraints were
+  // prepared), plus the null body at the end.
   std::vector<float> freeV_;
-  std::vector<Vec2> deltaPosition_;
-  std::vector<Rot> deltaRotation_;
+  std::vector<SolverBody> solverBodies_;
   std::vector<float> startAngle_;
   std::vector<Vec2> startCenter_;
   ContactEvents events_;

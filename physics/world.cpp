@@ -1105,17 +1105,34 @@ void World::continuous() {
   // the static shapes their path touches, and stopped at the first time of impact (the
   // speculative contact of the next step then bounces them). Bodies that moved less than half
   // their smallest extent cannot pass through anything and are skipped.
+  //
+  // Bullets are swept against moving bodies too, each along its own motion of the step,
+  // bullets included (two bullets crossing paths mid-step meet; Box2D 2.4.1 lets them pass).
+  // A bullet that hits a moving body stops at the time of impact, and so does the body it hit:
+  // both are where they touched, and the next step's contact makes them respond there.
+  // Bodies are taken in slot order; one already stopped sweeps only as far as it went.
+  auto sweepOf = [&](const Body& body) -> Sweep {
+    if (!awake(body)) return {{}, body.xf.p, body.xf.p, body.angle, body.angle};
+    const auto s = static_cast<std::size_t>(body.slot);
+    const std::size_t i = 3 * s;
+    return {body.localCenter, startCenter_[s], {q_[i], q_[i + 1]}, startAngle_[s], q_[i + 2]};
+  };
+  auto placeAt = [&](const Body& body, const Sweep& sweep, float t) {
+    const std::size_t i = 3 * static_cast<std::size_t>(body.slot);
+    const Vec2 c = lerp(sweep.c1, sweep.c2, t);
+    q_[i] = c.x;
+    q_[i + 1] = c.y;
+    q_[i + 2] = sweep.a1 + t * (sweep.a2 - sweep.a1);
+  };
   for (std::size_t s = 0; s < static_cast<std::size_t>(awakeCount_); ++s) {
     Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
     if (b.type != BodyType::dynamicBody || b.shapes.empty()) continue;
-    const std::size_t i = 3 * s;
-    const Vec2 c1 = startCenter_[s], c2{q_[i], q_[i + 1]};
-    const float a1 = startAngle_[s], a2 = q_[i + 2];
-    const float motion = length(c2 - c1) + std::fabs(a2 - a1) * b.maxExtent;
+    const Sweep sweep = sweepOf(b);
+    const float motion = length(sweep.c2 - sweep.c1) + std::fabs(sweep.a2 - sweep.a1) * b.maxExtent;
     if (motion < 0.5f * b.minExtent) continue;
-    const Sweep sweep{b.localCenter, c1, c2, a1, a2};
     const Transform xf1 = sweepTransform(sweep, 0.0f), xf2 = sweepTransform(sweep, 1.0f);
     float first = 1.0f;
+    std::int32_t hitBody = -1;  // a moving body hit first, if any
     for (std::int32_t own : b.shapes) {
       const ShapeRecord& mine = shapes_[static_cast<std::size_t>(own)];
       if (mine.isSensor) continue;
@@ -1123,20 +1140,33 @@ void World::continuous() {
       const AABB path = unionOf(computeAABB(mine.shape, xf1), computeAABB(mine.shape, xf2));
       broadphase_.queryAABB(path, broadphase_.filter(mine.proxy), [&](ProxyId other) {
         const ShapeRecord& r = shapes_[broadphase_.userData(other)];
+        if (r.isSensor || r.body == mine.body) return true;
         const Body& ob = bodies_[static_cast<std::size_t>(r.body)];
-        if (ob.type != BodyType::staticBody || r.isSensor) return true;
-        const Sweep fixed{{}, ob.xf.p, ob.xf.p, ob.angle, ob.angle};
-        const ToiOutput toi = timeOfImpact(proxy, sweep, makeProxy(r.shape), fixed, first);
+        const bool moving = ob.type != BodyType::staticBody;
+        if (moving && !b.bullet) return true;
+        const Sweep otherSweep = sweepOf(ob);
+        const ShapeProxy otherProxy = makeProxy(r.shape);
+        const ToiOutput toi = timeOfImpact(proxy, sweep, otherProxy, otherSweep, first);
         // Already touching at the start (sliding along a wall): the contact handles it.
-        if (toi.state == ToiState::hit && toi.fraction < first) first = toi.fraction;
+        if (toi.state != ToiState::hit || toi.fraction >= first) return true;
+        // Two moving bodies already touching (a bullet that hit and rides along the body it
+        // hit) stay to their contact; stopping them at the start of every step would freeze
+        // both in place.
+        if (moving &&
+            shapeDistance(proxy, xf1, otherProxy, sweepTransform(otherSweep, 0.0f)).distance <
+                2.0f * kLinearSlop)
+          return true;
+        first = toi.fraction;
+        hitBody = moving && awake(ob) ? r.body : -1;
         return true;
       });
     }
     if (first < 1.0f) {
-      const Vec2 c = lerp(c1, c2, first);
-      q_[i] = c.x;
-      q_[i + 1] = c.y;
-      q_[i + 2] = a1 + first * (a2 - a1);
+      if (hitBody >= 0) {
+        const Body& other = bodies_[static_cast<std::size_t>(hitBody)];
+        if (other.type == BodyType::dynamicBody) placeAt(other, sweepOf(other), first);
+      }
+      placeAt(b, sweep, first);
     }
   }
 }

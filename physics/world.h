@@ -87,7 +87,7 @@ struct BodyDef {
   float angularDamping = 0.0f;
   float gravityScale = 1.0f;
   bool fixedRotation = false;
-  bool bullet = false;  // continuous collision against dynamic bodies too (not yet used)
+  bool bullet = false;  // continuous collision against moving bodies too, bullets included
   bool allowSleep = true;
   std::uint64_t userData = 0;
 };

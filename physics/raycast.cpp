@@ -216,7 +216,8 @@ namespace {
 // / d.d, the discriminant written with the cross product (Lagrange's identity) so that it never
 // cancels two huge products on long rays or far circles. 1 / d.d is computed beside the square
 // root, off the critical path.
-CastOutput rayCastCircleWorld(const Circle& c, const Transform& xf, const RayCastInput& in) {
+[[gnu::always_inline]] inline CastOutput rayCastCircleWorld(const Circle& c, const Transform& xf,
+                                                            const RayCastInput& in) {
   Vec2 s = (xf.p - in.origin) + rotate(xf.q, c.center);
   float r2 = c.radius * c.radius;
   if (lengthSquared(s) <= r2) return startsInside(in);
@@ -239,8 +240,9 @@ CastOutput rayCastCircleWorld(const Circle& c, const Transform& xf, const RayCas
 
 // A segment cast in the world frame, with the endpoints taken relative to the ray origin
 // ((p - origin) + R v stays exact far from the world origin).
-CastOutput rayCastSegmentWorld(const Segment& g, bool oneSided, const Transform& xf,
-                               const RayCastInput& in) {
+[[gnu::always_inline]] inline CastOutput rayCastSegmentWorld(const Segment& g, bool oneSided,
+                                                             const Transform& xf,
+                                                             const RayCastInput& in) {
   Vec2 v1 = (xf.p - in.origin) + rotate(xf.q, g.point1);
   Vec2 e = rotate(xf.q, g.point2 - g.point1);
   Vec2 n = normalize(rightPerp(e));
@@ -294,10 +296,21 @@ CastOutput rayCastLocal(const Shape& s, const Transform& xf, const RayCastInput&
 }  // namespace
 
 CastOutput rayCast(const Shape& s, const Transform& xf, const RayCastInput& in) {
+  // One test lets ordinary input through: the offset's components and the translation's
+  // squared length summed are finite (anything infinite or NaN, or a sum that overflows, takes
+  // the careful path below, which decides exactly as if there were no shortcut).
+  const Vec2 offset = xf.p - in.origin;
+  if (std::isfinite(offset.x + offset.y + lengthSquared(in.translation))) [[likely]] {
+    if (s.type == ShapeType::circle) return rayCastCircleWorld(s.circle, xf, in);
+    if (s.type == ShapeType::segment) return rayCastSegmentWorld(s.segment, false, xf, in);
+    if (s.type == ShapeType::chainSegment)
+      return rayCastSegmentWorld(s.chainSegment.segment, s.chainSegment.oneSided, xf, in);
+    return rayCastLocal(s, xf, in);
+  }
   // Inputs near the float range: a shape whose offset from the ray origin overflows is farther
   // than any representable ray reaches; a translation whose squared length overflows is cast
   // scaled by an exact power of two and its fraction scaled back.
-  if (!isFinite(xf.p - in.origin)) return {};
+  if (!isFinite(offset)) return {};
   if (!std::isfinite(lengthSquared(in.translation)) && isFinite(in.translation)) {
     constexpr float kScale = 0x1p-70f;
     RayCastInput scaled{in.origin, kScale * in.translation, in.maxFraction / kScale};

@@ -12,6 +12,11 @@
 //   pyramid/B    touching 1 m boxes, base B, friction 0.6, on a static ground box, gravity -10,
 //                1000 steps, sleeping off (and again with sleeping on in both engines). Counter:
 //                the top box's drift from its exact resting height (m). Time per step.
+// What a scene lacks costs nothing (the rows to read against arena/N=1000 and pyramid/base 20):
+//   arena, 20k static boxes outside   20,000 more static boxes beyond the walls
+//   arena, continuous off             no continuous collision in either engine
+//   arena, fixed rotation             every circle with fixed rotation
+//   pyramid asleep/base 20            the base-20 pyramid after it has fallen asleep
 // Each engine runs with its defaults: Box2D 8 velocity and 3 position iterations, ours 4
 // substeps.
 #include <benchmark/benchmark.h>
@@ -45,6 +50,8 @@ struct SceneDesc {
   Vec2 gravity{};
   bool sleep = false;
   bool fixedRotation = false;  // every dynamic body
+  bool continuous = true;      // continuous collision (Box2D: SetContinuousPhysics)
+  int settleSteps = 0;         // untimed steps before the timed ones (a pyramid falling asleep)
   float friction = 0.2f, restitution = 0.5f;
   std::vector<BoxDesc> statics;
   std::vector<BodyDesc> bodies;
@@ -102,6 +109,7 @@ struct Ours {
     rc::WorldDef def;
     def.gravity = s.gravity;
     def.enableSleep = s.sleep;
+    def.continuous = s.continuous;
     def.bounds = {{-128, -128}, {128, 128}};
     world = std::make_unique<rc::World>(def);
     rc::ShapeDef sd;
@@ -140,6 +148,7 @@ struct Box2D {
   explicit Box2D(const SceneDesc& s) {
     world = std::make_unique<b2World>(b2Vec2(s.gravity.x, s.gravity.y));
     world->SetAllowSleeping(s.sleep);
+    world->SetContinuousPhysics(s.continuous);
     b2BodyDef gd;
     b2Body* ground = world->CreateBody(&gd);
     for (const BoxDesc& b : s.statics) {
@@ -229,6 +238,8 @@ void runPyramid(benchmark::State& state, const SceneDesc& scene, int steps) {
   for (auto _ : state) {
     state.PauseTiming();
     Engine engine(scene);
+    for (int k = 0; k < scene.settleSteps; ++k)
+      engine.step();
     state.ResumeTiming();
     for (int k = 0; k < steps; ++k)
       engine.step();
@@ -276,6 +287,18 @@ void registerAll() {
   SceneDesc still = arena(1000, 0, 0, 7);
   still.fixedRotation = true;
   race("arena, fixed rotation/N=1000", add(still), Kind::arena);
+  // Static geometry never enters a per-step loop: 20,000 more static boxes outside the walls,
+  // where nothing reaches them, should cost nothing per step.
+  SceneDesc decorated = arena(1000, 0, 0, 7);
+  for (float x = -126.5f; x <= 126.5f; x += 1.0f)
+    for (float y = -126.5f; y <= 126.5f; y += 1.0f)
+      if (std::max(std::abs(x), std::abs(y)) > 103.0f)
+        decorated.statics.push_back({{x, y}, {0.2f, 0.2f}});
+  race("arena, 20k static boxes outside/N=1000", add(decorated), Kind::arena);
+  // No fast bodies, no continuous work: the same arena with continuous collision off.
+  SceneDesc discrete = arena(1000, 0, 0, 7);
+  discrete.continuous = false;
+  race("arena, continuous off/N=1000", add(discrete), Kind::arena);
   race("bullets/100 m per s", add(arena(1000, 500, 100.0f, 8)), Kind::arena);
   // Ours alone at 1000 m/s (Box2D 2.4.1 caps motion at 2 m per step: 120 m/s).
   race("bullets 1000 m per s (ours alone)", add(arena(1000, 500, 1000.0f, 8)), Kind::arena, false);
@@ -286,6 +309,12 @@ void registerAll() {
     sleeping.sleep = true;
     race("pyramid, sleeping on/base " + std::to_string(base), add(sleeping), Kind::pyramid);
   }
+  // Nothing awake costs almost nothing: the base-20 pyramid once it has fallen asleep in both
+  // engines (untimed 1200 steps first), then 1000 timed steps.
+  SceneDesc asleep = pyramid(20);
+  asleep.sleep = true;
+  asleep.settleSteps = 1200;
+  race("pyramid asleep/base 20", add(asleep), Kind::pyramid);
 }
 
 }  // namespace

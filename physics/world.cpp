@@ -288,7 +288,7 @@ void World::updateSleep(float dt) {
     const bool still = def_.enableSleep && b.allowSleep && v2 <= lin2 && w2 <= ang2;
     b.sleepTime = still ? b.sleepTime + dt : 0.0f;
   }
-  if (!def_.enableSleep) return;
+  if (!def_.enableSleep || n == 0) return;
   // Islands: awake dynamic bodies joined by touching contacts (union-find over slots).
   islandParent_.resize(n);
   for (std::size_t s = 0; s < n; ++s)
@@ -747,6 +747,9 @@ void World::destroyContact(std::size_t index) {
 }
 
 void World::narrowphase(float dt) {
+  // Nothing awake: every contact is as it was when its bodies fell asleep (the loop below
+  // would skip each one).
+  if (awakeCount_ == 0) return;
   // How far a shape's surface can move towards anything this step: its body's speed plus its
   // turning speed times its reach from the centre of mass.
   auto reachSpeed = [&](const ShapeRecord& r) {
@@ -896,6 +899,7 @@ void World::solve(float dt) {
   const auto slots = static_cast<std::size_t>(awakeCount_);
   // Prepare: one constraint per touching contact, anchors from the centres of mass.
   constraints_.clear();
+  if (slots == 0) return;  // nothing awake: nothing to solve
   for (std::size_t ci = 0; ci < contacts_.size(); ++ci) {
     const Contact& c = contacts_[ci];
     if (!c.touching) continue;

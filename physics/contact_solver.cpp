@@ -45,6 +45,8 @@ struct Batch {
   F k11, k12, k22, i11, i12, i22;
   M block;  // the lane's two points may be solved together
   PointLanes p[2];
+  int points;  // the most points of any lane: with 1 (circles), the second point's lanes are
+               // skipped
 };
 
 // The bodies of one side of a batch, lane by lane.
@@ -106,11 +108,13 @@ void warmStartBatch(Batch& c, SolverBody* bodies) {
   // the impact. Later substeps' velocities carry what the solver did to neighbouring contacts
   // and are not an approach: restitution on those fed a cluster of overlapping circles
   // energy, step after step.
-  for (PointLanes& p : c.p) {
+  for (int k = 0; k < c.points; ++k) {
+    PointLanes& p = c.p[k];
     const F vn = vmin(p.relativeVelocity, v.along(c.nx, c.ny, p.rnA, p.rnB));
     p.relativeVelocity = select(p.maxNormalImpulse > 0.0f, p.relativeVelocity, vn);
   }
-  for (const PointLanes& p : c.p) {
+  for (int k = 0; k < c.points; ++k) {
+    const PointLanes& p = c.p[k];
     const F px = p.normalImpulse * c.nx + p.tangentImpulse * tx;
     const F py = p.normalImpulse * c.ny + p.tangentImpulse * ty;
     v.vAx -= c.invMassA * px;
@@ -134,7 +138,7 @@ void solveBatch(Batch& c, SolverBody* bodies, const ContactSoftness& soft, bool 
   // (deeper, with the push-out bias; in the relax pass rigid too).
   F bias[2], massScale[2], impulseScale[2];
   M isSoft[2];
-  for (int k = 0; k < 2; ++k) {
+  for (int k = 0; k < c.points; ++k) {
     const PointLanes& p = c.p[k];
     // Separation now, from how far the bodies moved and turned since the manifold was made.
     const F rAx = A.dqc * p.rAx - A.dqs * p.rAy, rAy = A.dqs * p.rAx + A.dqc * p.rAy;
@@ -150,36 +154,6 @@ void solveBatch(Batch& c, SolverBody* bodies, const ContactSoftness& soft, bool 
     impulseScale[k] = select(isSoft[k], splat(soft.impulseScale), F{});
   }
 
-  // Both points at once where the manifold allows it (a 2x2 linear complementarity problem):
-  // solved one after the other, the first point's impulse turns the body and the second pushes
-  // harder, and a tall stack of boxes, perfectly symmetric, starts to rock. With K the points'
-  // coupled effective mass, the soft update x = (1 - s_i) l - s_m K^-1 (vn + b) is the solution
-  // of A x + q = r with A = K / s_m, x >= 0, r >= 0, x r = 0; the four cases of which points
-  // push are tried in turn. Lanes whose points are in different regimes, whose K is badly
-  // conditioned, or where rounding leaves no case standing take the points one after the other.
-  PointLanes &p0 = c.p[0], &p1 = c.p[1];
-  const F l0 = p0.normalImpulse, l1 = p1.normalImpulse;
-  const F vn0 = v.along(c.nx, c.ny, p0.rnA, p0.rnB);
-  const F vn1 = v.along(c.nx, c.ny, p1.rnA, p1.rnB);
-  const M blockSoft = isSoft[0];
-  const F sm = massScale[0];
-  const F carry = select(blockSoft, splat(soft.carry), splat(1.0f));
-  const F q0 = vn0 + bias[0] - carry * (c.k11 * l0 + c.k12 * l1);
-  const F q1 = vn1 + bias[1] - carry * (c.k12 * l0 + c.k22 * l1);
-  const F both0 = -sm * (c.i11 * q0 + c.i12 * q1), both1 = -sm * (c.i12 * q0 + c.i22 * q1);
-  const F a12 = select(blockSoft, c.k12 * soft.invMassScale, c.k12);
-  const M bothPush = (both0 >= 0.0f) & (both1 >= 0.0f);
-  const F first0 = -sm * p0.normalMass * q0;
-  const M firstPushes = (first0 >= 0.0f) & (a12 * first0 + q1 >= 0.0f);
-  const F second1 = -sm * p1.normalMass * q1;
-  const M secondPushes = (second1 >= 0.0f) & (a12 * second1 + q0 >= 0.0f);
-  const M neither = (q0 >= 0.0f) & (q1 >= 0.0f);
-  const M useBlock =
-      c.block & (isSoft[0] == isSoft[1]) & (bothPush | firstPushes | secondPushes | neither);
-  const F block0 = select(bothPush, both0, select(firstPushes, first0, F{}));
-  const F block1 =
-      select(bothPush, both1, select(firstPushes, F{}, select(secondPushes, second1, F{})));
-
   auto setNormal = [&](PointLanes& p, F total) {
     const F applied = total - p.normalImpulse;
     p.normalImpulse = total;
@@ -192,12 +166,46 @@ void solveBatch(Batch& c, SolverBody* bodies, const ContactSoftness& soft, bool 
         -p.normalMass * massScale[k] * (vn + bias[k]) - impulseScale[k] * p.normalImpulse;
     return vmax(p.normalImpulse + impulse, F{});
   };
-  setNormal(p0, select(useBlock, block0, alone(p0, vn0, 0)));
-  setNormal(p1, select(useBlock, block1, alone(p1, v.along(c.nx, c.ny, p1.rnA, p1.rnB), 1)));
+  PointLanes &p0 = c.p[0], &p1 = c.p[1];
+  if (c.points == 1) {
+    setNormal(p0, alone(p0, v.along(c.nx, c.ny, p0.rnA, p0.rnB), 0));
+  } else {
+    // Both points at once where the manifold allows it (a 2x2 linear complementarity problem):
+    // solved one after the other, the first point's impulse turns the body and the second pushes
+    // harder, and a tall stack of boxes, perfectly symmetric, starts to rock. With K the points'
+    // coupled effective mass, the soft update x = (1 - s_i) l - s_m K^-1 (vn + b) is the solution
+    // of A x + q = r with A = K / s_m, x >= 0, r >= 0, x r = 0; the four cases of which points
+    // push are tried in turn. Lanes whose points are in different regimes, whose K is badly
+    // conditioned, or where rounding leaves no case standing take the points one after the other.
+    const F l0 = p0.normalImpulse, l1 = p1.normalImpulse;
+    const F vn0 = v.along(c.nx, c.ny, p0.rnA, p0.rnB);
+    const F vn1 = v.along(c.nx, c.ny, p1.rnA, p1.rnB);
+    const M blockSoft = isSoft[0];
+    const F sm = massScale[0];
+    const F carry = select(blockSoft, splat(soft.carry), splat(1.0f));
+    const F q0 = vn0 + bias[0] - carry * (c.k11 * l0 + c.k12 * l1);
+    const F q1 = vn1 + bias[1] - carry * (c.k12 * l0 + c.k22 * l1);
+    const F both0 = -sm * (c.i11 * q0 + c.i12 * q1), both1 = -sm * (c.i12 * q0 + c.i22 * q1);
+    const F a12 = select(blockSoft, c.k12 * soft.invMassScale, c.k12);
+    const M bothPush = (both0 >= 0.0f) & (both1 >= 0.0f);
+    const F first0 = -sm * p0.normalMass * q0;
+    const M firstPushes = (first0 >= 0.0f) & (a12 * first0 + q1 >= 0.0f);
+    const F second1 = -sm * p1.normalMass * q1;
+    const M secondPushes = (second1 >= 0.0f) & (a12 * second1 + q0 >= 0.0f);
+    const M neither = (q0 >= 0.0f) & (q1 >= 0.0f);
+    const M useBlock =
+        c.block & (isSoft[0] == isSoft[1]) & (bothPush | firstPushes | secondPushes | neither);
+    const F block0 = select(bothPush, both0, select(firstPushes, first0, F{}));
+    const F block1 =
+        select(bothPush, both1, select(firstPushes, F{}, select(secondPushes, second1, F{})));
+    setNormal(p0, select(useBlock, block0, alone(p0, vn0, 0)));
+    setNormal(p1, select(useBlock, block1, alone(p1, v.along(c.nx, c.ny, p1.rnA, p1.rnB), 1)));
+  }
 
   // Coulomb friction, bounded by each point's normal impulse.
   const F tx = c.ny, ty = -c.nx;
-  for (PointLanes& p : c.p) {
+  for (int k = 0; k < c.points; ++k) {
+    PointLanes& p = c.p[k];
     const F vt = v.along(tx, ty, p.rtA, p.rtB);
     const F limit = c.friction * p.normalImpulse;
     const F total = vmin(vmax(p.tangentImpulse - p.tangentMass * vt, -limit), limit);
@@ -286,6 +294,7 @@ void ContactSolver::prepare(std::span<const ContactConstraint> constraints, int 
   d.laneConstraint.assign(batchCount * kLanes, -1);
   for (Batch& b : d.batches) {
     b = Batch{};
+    b.points = 1;
     std::fill(std::begin(b.a), std::end(b.a), bodyCount);
     std::fill(std::begin(b.b), std::end(b.b), bodyCount);
   }
@@ -321,6 +330,7 @@ void ContactSolver::prepare(std::span<const ContactConstraint> constraints, int 
       b.i12[l] = cc.i12;
       b.i22[l] = cc.i22;
       b.block[l] = cc.pointCount == 2 && cc.blockSolve ? -1 : 0;
+      b.points = std::max(b.points, cc.pointCount);
       for (int k = 0; k < cc.pointCount; ++k) {
         const ConstraintPoint& s = cc.points[k];
         PointLanes& p = b.p[k];

@@ -899,6 +899,7 @@ void World::solve(float dt) {
   const auto slots = static_cast<std::size_t>(awakeCount_);
   // Prepare: one constraint per touching contact, anchors from the centres of mass.
   constraints_.clear();
+  profile_.colours = profile_.overflow = 0;
   if (slots == 0) return;  // nothing awake: nothing to solve
   for (std::size_t ci = 0; ci < contacts_.size(); ++ci) {
     const Contact& c = contacts_[ci];
@@ -977,6 +978,8 @@ void World::solve(float dt) {
   }
 
   contactSolver_.prepare(constraints_, static_cast<int>(slots));
+  profile_.colours = contactSolver_.colourCount();
+  profile_.overflow = contactSolver_.overflowCount();
 
   startCenter_.resize(slots);
   startAngle_.resize(slots);

@@ -173,7 +173,10 @@ struct ContactEvents {
 // Wall-clock milliseconds of the last step, by phase.
 struct Profile {
   double updatePairs = 0, narrowphase = 0, solve = 0, continuous = 0, refit = 0, sensors = 0,
-         sleep = 0, total = 0;
+         sleep = 0, total = 0;  // milliseconds
+  // The contact solver's last step: colours in use, and constraints solved one at a time
+  // because a body had more contacts than there are colours.
+  int colours = 0, overflow = 0;
 };
 
 class World;

@@ -451,6 +451,37 @@ TEST(World, OverlapsArePushedOutNotBounced) {
   EXPECT_LT(fastest, rc::length(circleDef.linearVelocity) + def.maxPushoutSpeed);
 }
 
+// A body with more contacts than the solver has colours: 40 boxes resting on one 40 m plank put
+// 41 constraints on the plank, and those past the colours are solved one at a time after them.
+// Everything still comes to rest where it should.
+TEST(World, BodyWithMoreContactsThanColoursRests) {
+  rc::WorldDef def;
+  def.enableSleep = false;  // so the last step's solver counts are the settled scene's
+  rc::World w(def);
+  ground(w);  // top face at y = 0
+  BodyId plank = w.createBody(dynamicAt({0, 0.25f}));
+  w.createShape(plank, rc::makeBox(20, 0.25f));
+  std::vector<BodyId> boxes;
+  for (int i = 0; i < 40; ++i) {
+    BodyId b = w.createBody(dynamicAt({-19.5f + static_cast<float>(i), 0.75f}));
+    w.createShape(b, rc::makeBox(0.25f, 0.25f));
+    boxes.push_back(b);
+  }
+  for (int i = 0; i < 300; ++i)
+    w.step(1.0f / 60.0f);
+  std::printf("colours %d, constraints one at a time %d\n", w.profile().colours,
+              w.profile().overflow);
+  EXPECT_GT(w.profile().overflow, 0);
+  // Each layer of contact rests within the linear slop: one layer under the plank, two under
+  // a box (with room for rounding).
+  EXPECT_NEAR(w.position(plank).y, 0.25f, 2.0f * rc::kLinearSlop);
+  for (BodyId b : boxes) {
+    EXPECT_NEAR(w.position(b).y, 0.75f, 3.0f * rc::kLinearSlop);
+    EXPECT_NEAR(std::fabs(w.angle(b)), 0.0f, 1e-3f);
+    EXPECT_LT(rc::length(w.linearVelocity(b)), 0.01f);
+  }
+}
+
 // Box2D's vertical stack: 15 boxes of 1 m on the ground stand upright and fall asleep.
 TEST(World, VerticalStackStands) {
   rc::World w;

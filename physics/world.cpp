@@ -1114,7 +1114,7 @@ void World::continuous() {
   // their smallest extent cannot pass through anything and are skipped.
   //
   // Bullets are swept against moving bodies too, each along its own motion of the step,
-  // bullets included (two bullets crossing paths mid-step meet; Box2D 2.4.1 lets them pass).
+  // bullets included (two bullets crossing paths mid-step meet; Box2D v3 skips bullet pairs).
   // A bullet that hits a moving body stops at the time of impact, and so does the body it hit:
   // both are where they touched, and the next step's contact makes them respond there.
   // Bodies are taken in slot order; one already stopped sweeps only as far as it went.

@@ -255,13 +255,13 @@ void ContactSolver::prepare(std::span<const ContactConstraint> constraints, int 
   Data& d = *data_;
   // Greedy colouring in constraint order: each takes the lowest colour neither of its moving
   // bodies has yet.
+  const std::size_t n = constraints.size();
   d.bodyColours.assign(static_cast<std::size_t>(bodyCount), 0u);
-  d.colour.resize(constraints.size());
+  d.colour.resize(n);
   int perColour[kColours + 1] = {};
   auto moves = [](std::int32_t slot, float invMass, float invI) {
     return slot >= 0 && (invMass > 0.0f || invI > 0.0f);
   };
-  const std::size_t n = constraints.size();
   for (std::size_t i = 0; i < n; ++i) {
     const ContactConstraint& cc = constraints[i];
     const bool movesA = moves(cc.slotA, cc.invMassA, cc.invIA);

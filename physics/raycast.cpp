@@ -262,29 +262,33 @@ namespace {
   return hitAt(n, mulAdd(in.origin, t, in.translation), t);
 }
 
-// A polygon cast on its own (the commonest solid after circles and boxes): the ray into the
-// polygon's frame, the clip, the hit back out, without the other shapes' code around it (in
-// the shared dispatcher the register spills of every other case cost an oriented box's cast a
-// tenth of its time).
-[[gnu::noinline]] CastOutput rayCastPolygonWorld(const Polygon& p, const Transform& xf,
-                                                 const RayCastInput& in) {
+// A cast in the shape's frame, the result brought back to the world. The result is
+// initialised from the per-type cast's prvalue and is the only thing returned, so no copy of
+// it is made (see hitAt).
+template <class Cast>
+[[gnu::always_inline]] inline CastOutput castInShapeFrame(const Transform& xf,
+                                                          const RayCastInput& in, Cast&& cast) {
   const RayCastInput local{invApply(xf, in.origin), invRotate(xf.q, in.translation),
                            in.maxFraction};
-  CastOutput out = castPolygon(p, local);
+  CastOutput out = cast(local);
   if (out.hit) {
+    // The point from the world ray, not the local one, so far-off shapes keep their precision.
     out.point = mulAdd(in.origin, out.fraction, in.translation);
     out.normal = rotate(xf.q, out.normal);
   }
   return out;
 }
 
-// Cast in the shape's frame, the result brought back to the world. The result is initialised
-// from the per-type cast's prvalue and is the only thing returned, so no copy of it is made
-// (see hitAt).
+// A polygon cast on its own (the commonest solid after circles and boxes), without the other
+// shapes' code around it: in the shared function below the register spills of every other case
+// cost an oriented box's cast a tenth of its time.
+[[gnu::noinline]] CastOutput rayCastPolygonWorld(const Polygon& p, const Transform& xf,
+                                                 const RayCastInput& in) {
+  return castInShapeFrame(xf, in, [&](const RayCastInput& local) { return castPolygon(p, local); });
+}
+
 CastOutput rayCastLocal(const Shape& s, const Transform& xf, const RayCastInput& in) {
-  const RayCastInput local{invApply(xf, in.origin), invRotate(xf.q, in.translation),
-                           in.maxFraction};
-  CastOutput out = [&]() -> CastOutput {
+  return castInShapeFrame(xf, in, [&](const RayCastInput& local) -> CastOutput {
     switch (s.type) {
       case ShapeType::circle:
         return rayCast(s.circle, local);
@@ -300,13 +304,7 @@ CastOutput rayCastLocal(const Shape& s, const Transform& xf, const RayCastInput&
         return rayCast(s.chainSegment, local);
     }
     return {};
-  }();
-  if (out.hit) {
-    // The point from the world ray, not the local one, so far-off shapes keep their precision.
-    out.point = mulAdd(in.origin, out.fraction, in.translation);
-    out.normal = rotate(xf.q, out.normal);
-  }
-  return out;
+  });
 }
 
 }  // namespace

@@ -988,19 +988,6 @@ void World::solve(float dt) {
     startCenter_[s] = {q_[3 * s], q_[3 * s + 1]};
     startAngle_[s] = q_[3 * s + 2];
   }
-  auto loadVelocities = [&] {
-    for (std::size_t s = 0; s < slots; ++s) {
-      solverBodies_[s].v = {v_[3 * s], v_[3 * s + 1]};
-      solverBodies_[s].w = v_[3 * s + 2];
-    }
-  };
-  auto storeVelocities = [&] {
-    for (std::size_t s = 0; s < slots; ++s) {
-      v_[3 * s] = solverBodies_[s].v.x;
-      v_[3 * s + 1] = solverBodies_[s].v.y;
-      v_[3 * s + 2] = solverBodies_[s].w;
-    }
-  };
 
   const float h = dt / static_cast<float>(def_.substeps);
   const ContactSoftness soft =
@@ -1023,26 +1010,35 @@ void World::solve(float dt) {
     }
     freeV_.assign(v.begin(), v.end());
     // Warm start with the impulses carried so far, then solve with the soft bias.
-    loadVelocities();
+    for (std::size_t s = 0; s < slots; ++s) {
+      solverBodies_[s].v = {v_[3 * s], v_[3 * s + 1]};
+      solverBodies_[s].w = v_[3 * s + 2];
+    }
     contactSolver_.warmStart(solverBodies_);
     // Symmetric Gauss-Seidel: the relax pass sweeps the colours the other way from the solve
     // pass, and each substep starts the way the last one ended.
     const bool backward = sub % 2 == 1;
     contactSolver_.solve(solverBodies_, soft, true, backward);
-    storeVelocities();
-    // Positions: the free motion plus what the contacts changed in the velocity.
-    for (std::size_t k = 0; k < 3 * slots; ++k)
-      q_[k] += h * (v_[k] - freeV_[k]);
+    // Positions: the free motion plus what the contacts changed in the velocity (read from the
+    // solver's bodies; v_ takes them after the relax pass).
     for (std::size_t s = 0; s < slots; ++s) {
-      solverBodies_[s].dp = Vec2{q_[3 * s], q_[3 * s + 1]} - startCenter_[s];
+      SolverBody& sb = solverBodies_[s];
+      q_[3 * s] += h * (sb.v.x - freeV_[3 * s]);
+      q_[3 * s + 1] += h * (sb.v.y - freeV_[3 * s + 1]);
+      q_[3 * s + 2] += h * (sb.w - freeV_[3 * s + 2]);
+      sb.dp = Vec2{q_[3 * s], q_[3 * s + 1]} - startCenter_[s];
       // Bodies that do not turn (fixed rotation, or just not spinning) cost no trigonometry.
       const float turned = q_[3 * s + 2] - startAngle_[s];
-      solverBodies_[s].dq = turned == 0.0f ? Rot{} : Rot::fromAngle(turned);
+      sb.dq = turned == 0.0f ? Rot{} : Rot::fromAngle(turned);
     }
     // Relax: the same solve without the push-out bias, so separating bodies keep no speed
     // from it (the bias pushes positions apart; relax removes its velocity).
     contactSolver_.solve(solverBodies_, soft, false, !backward);
-    storeVelocities();
+    for (std::size_t s = 0; s < slots; ++s) {
+      v_[3 * s] = solverBodies_[s].v.x;
+      v_[3 * s + 1] = solverBodies_[s].v.y;
+      v_[3 * s + 2] = solverBodies_[s].w;
+    }
   }
   contactSolver_.store(constraints_);
   applyRestitution();

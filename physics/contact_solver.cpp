@@ -1,35 +1,25 @@
 #include "physics/contact_solver.h"
 
 #include <algorithm>
-#include <bit>
 #include <cstddef>
 #include <vector>
 
 #include "physics/constants.h"
+#include "physics/simd.h"
 
 namespace rc {
 namespace {
 
-// Four floats, four lane masks (all bits set where true).
-using F = float __attribute__((vector_size(16)));
-using M = std::int32_t __attribute__((vector_size(16)));
-constexpr int kLanes = 4;
+using simd::F;
+using simd::kLanes;
+using simd::M;
+using simd::select;
+using simd::splat;
+using simd::vmax;
+using simd::vmin;
 
 // Colours a constraint may take; a body with more contacts than this overflows.
 constexpr int kColours = 24;
-
-inline F splat(float x) {
-  return F{x, x, x, x};
-}
-inline F select(M m, F a, F b) {
-  return std::bit_cast<F>((m & std::bit_cast<M>(a)) | (~m & std::bit_cast<M>(b)));
-}
-inline F vmax(F a, F b) {
-  return select(a > b, a, b);
-}
-inline F vmin(F a, F b) {
-  return select(a < b, a, b);
-}
 
 struct PointLanes {
   F rAx, rAy, rBx, rBy, rnA, rnB, rtA, rtB;

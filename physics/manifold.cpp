@@ -4,31 +4,67 @@
 #include <cmath>
 
 #include "physics/distance.h"
+#include "physics/simd.h"
 
 namespace rc {
 namespace {
 
+using simd::F;
+
 // A shape as a rounded convex hull: 1 to 8 core points, outward edge normals, and a radius.
 // A two-point hull (capsule, segment) has two edges: p0 -> p1 and back, with opposite normals.
+// The points are kept as x and y lanes, four to a vector, for the separating axis test (see
+// maxSeparation); lanes past the last point repeat point 0 up to the end of its group of four.
+// They are written whole: a vector load of points written one by one cannot be forwarded from
+// the stores and stalls until they retire (that stall made the first four-wide test slower than
+// the scalar loop).
 struct Hull {
-  Vec2 v[kMaxPolygonVertices];
+  F x[2], y[2];
   Vec2 n[kMaxPolygonVertices];
   Vec2 centroid;
   int count;
   float radius;
+
+  Vec2 v(int i) const { return {x[i >> 2][i & 3], y[i >> 2][i & 3]}; }
 };
 
-// Fills only the two points in use: a Hull is 140 bytes, and building one aside and copying it
+// Fills only the two points in use: a Hull is 176 bytes, and building one aside and copying it
 // over was a fifth of a segment-box manifold.
 void setTwoPointHull(Hull* out, Vec2 a, Vec2 b, float radius) {
   Hull& h = *out;
   h.count = 2;
   h.radius = radius;
-  h.v[0] = a;
-  h.v[1] = b;
+  h.x[0] = F{a.x, b.x, a.x, b.x};
+  h.y[0] = F{a.y, b.y, a.y, b.y};
   h.n[0] = normalize(rightPerp(b - a));
   h.n[1] = -h.n[0];
   h.centroid = 0.5f * (a + b);
+}
+
+// A polygon's points into the hull's lanes, placed by q and p when `placed` (the same
+// arithmetic as apply(): c x - s y + p.x, s x + c y + p.y, lane by lane). Lanes past the last
+// point take point 0.
+template <bool placed>
+[[gnu::always_inline]] inline void setPolygonPoints(Hull& h, const Polygon& g, Rot q, Vec2 p) {
+  const int groups = g.count > simd::kLanes ? 2 : 1;
+  float x0 = 0.0f, y0 = 0.0f;
+  for (int k = 0; k < groups; ++k) {
+    F x, y;
+    simd::deinterleave(g.vertices + simd::kLanes * k, &x, &y);
+    if constexpr (placed) {
+      const F c = simd::splat(q.c), sn = simd::splat(q.s);
+      const F rx = c * x - sn * y, ry = sn * x + c * y;
+      x = rx + simd::splat(p.x);
+      y = ry + simd::splat(p.y);
+    }
+    if (k == 0) {
+      x0 = x[0];
+      y0 = y[0];
+    }
+    const simd::M live = simd::M{0, 1, 2, 3} + simd::kLanes * k < g.count;
+    h.x[k] = live ? x : simd::splat(x0);
+    h.y[k] = live ? y : simd::splat(y0);
+  }
 }
 
 // The shape as a hull placed by xf (B is built directly in A's frame: one pass, no copy).
@@ -37,7 +73,9 @@ void makeHull(const Shape& s, const Transform& xf, Hull* out) {
   switch (s.type) {
     case ShapeType::circle:
       h.count = 1;
-      h.v[0] = h.centroid = apply(xf, s.circle.center);
+      h.centroid = apply(xf, s.circle.center);
+      h.x[0] = simd::splat(h.centroid.x);
+      h.y[0] = simd::splat(h.centroid.y);
       h.radius = s.circle.radius;
       return;
     case ShapeType::box: {
@@ -46,10 +84,10 @@ void makeHull(const Shape& s, const Transform& xf, Hull* out) {
       Vec2 wc = apply(xf, c), ex = e.x * ax, ey = e.y * ay;
       h.count = 4;
       h.radius = 0.0f;
-      h.v[0] = wc - ex - ey;
-      h.v[1] = wc + ex - ey;
-      h.v[2] = wc + ex + ey;
-      h.v[3] = wc - ex + ey;
+      // Corners wc - ex - ey, wc + ex - ey, wc + ex + ey, wc - ex + ey, lane by lane.
+      const F sx{-1.0f, 1.0f, 1.0f, -1.0f}, sy{-1.0f, -1.0f, 1.0f, 1.0f};
+      h.x[0] = (simd::splat(wc.x) + sx * ex.x) + sy * ey.x;
+      h.y[0] = (simd::splat(wc.y) + sx * ex.y) + sy * ey.y;
       h.n[0] = -ay;
       h.n[1] = ax;
       h.n[2] = ay;
@@ -60,10 +98,9 @@ void makeHull(const Shape& s, const Transform& xf, Hull* out) {
     case ShapeType::polygon:
       h.count = s.polygon.count;
       h.radius = s.polygon.radius;
-      for (int i = 0; i < h.count; ++i) {
-        h.v[i] = apply(xf, s.polygon.vertices[i]);
+      setPolygonPoints<true>(h, s.polygon, xf.q, xf.p);
+      for (int i = 0; i < h.count; ++i)
         h.n[i] = rotate(xf.q, s.polygon.normals[i]);
-      }
       h.centroid = apply(xf, s.polygon.centroid);
       return;
     case ShapeType::capsule:
@@ -88,17 +125,17 @@ void makeLocalHull(const Shape& s, Hull* out) {
   switch (s.type) {
     case ShapeType::circle:
       h.count = 1;
-      h.v[0] = h.centroid = s.circle.center;
+      h.centroid = s.circle.center;
+      h.x[0] = simd::splat(h.centroid.x);
+      h.y[0] = simd::splat(h.centroid.y);
       h.radius = s.circle.radius;
       return;
     case ShapeType::box: {
       const Vec2 c = s.box.center, e = s.box.halfExtents;
       h.count = 4;
       h.radius = 0.0f;
-      h.v[0] = {c.x - e.x, c.y - e.y};
-      h.v[1] = {c.x + e.x, c.y - e.y};
-      h.v[2] = {c.x + e.x, c.y + e.y};
-      h.v[3] = {c.x - e.x, c.y + e.y};
+      h.x[0] = F{c.x - e.x, c.x + e.x, c.x + e.x, c.x - e.x};
+      h.y[0] = F{c.y - e.y, c.y - e.y, c.y + e.y, c.y + e.y};
       h.n[0] = {0.0f, -1.0f};
       h.n[1] = {1.0f, 0.0f};
       h.n[2] = {0.0f, 1.0f};
@@ -109,10 +146,9 @@ void makeLocalHull(const Shape& s, Hull* out) {
     case ShapeType::polygon:
       h.count = s.polygon.count;
       h.radius = s.polygon.radius;
-      for (int i = 0; i < h.count; ++i) {
-        h.v[i] = s.polygon.vertices[i];
-        h.n[i] = s.polygon.normals[i];
-      }
+      setPolygonPoints<false>(h, s.polygon, {}, {});
+      // All the slots, a fixed size: a few vector moves instead of a call to memcpy.
+      std::copy_n(s.polygon.normals, kMaxPolygonVertices, h.n);
       h.centroid = s.polygon.centroid;
       return;
     case ShapeType::capsule:
@@ -225,29 +261,39 @@ struct PointContact {
   return {normal, mulSub(c, 0.5f * (rc + dist - radius), normal), sep, id, true};
 }
 
-Local pointVsCore(const Vec2* v, const Vec2* n, int count, float radius, Vec2 c, float rc,
-                  float margin) {
-  Local m;
-  const PointContact pc = pointContact(v, n, count, radius, c, rc, margin);
-  if (!pc.hit) return m;
-  m.normal = pc.normal;
-  m.add(pc.point, pc.separation, pc.id);
-  return m;
+// The hull's core points one after another (the form GJK and the point test take).
+ShapeProxy hullProxy(const Hull& h) {
+  ShapeProxy p;
+  p.count = h.count;
+  for (int i = 0; i < h.count; ++i)
+    p.points[i] = h.v(i);
+  return p;
 }
 
-Local hullVsPoint(const Hull& h, Vec2 c, float rc, float margin) {
-  return pointVsCore(h.v, h.n, h.count, h.radius, c, rc, margin);
+void hullVsPoint(const Hull& h, Vec2 c, float rc, float margin, Local& m) {
+  const PointContact pc = pointContact(hullProxy(h).points, h.n, h.count, h.radius, c, rc, margin);
+  if (!pc.hit) return;
+  m.normal = pc.normal;
+  m.add(pc.point, pc.separation, pc.id);
 }
 
 // Largest separation of b from a over a's edge normals, and the edge that gives it. Stops at
 // the first face farther than `enough`: the shapes are then too far apart for a contact.
+// b's points are taken four at a time (its padding repeats real points, which leaves each
+// minimum unchanged); each lane computes n.x (x - v.x) + n.y (y - v.y) exactly as dot(n, p - v)
+// does, so the result is the scalar loop's to the bit.
 float maxSeparation(const Hull& a, const Hull& b, float enough, int* edge) {
+  const F bx0 = b.x[0], by0 = b.y[0];
+  const bool wide = b.count > simd::kLanes;
   int best = 0;
   float bestSep = -1e30f;
   for (int i = 0; i < a.count; ++i) {
-    float s = 1e30f;
-    for (int j = 0; j < b.count; ++j)
-      s = std::min(s, dot(a.n[i], b.v[j] - a.v[i]));
+    const F nx = simd::splat(a.n[i].x), ny = simd::splat(a.n[i].y);
+    const Vec2 ai = a.v(i);
+    const F vx = simd::splat(ai.x), vy = simd::splat(ai.y);
+    F d = nx * (bx0 - vx) + ny * (by0 - vy);
+    if (wide) d = simd::vmin(d, nx * (b.x[1] - vx) + ny * (b.y[1] - vy));
+    const float s = simd::hmin(d);
     if (s > bestSep) {
       bestSep = s;
       best = i;
@@ -258,22 +304,23 @@ float maxSeparation(const Hull& a, const Hull& b, float enough, int* edge) {
   return bestSep;
 }
 
-// Both hulls in the same frame; normal from a to b.
-Local collideLocal(const Hull& a, const Hull& b, float margin) {
-  if (b.count == 1) return hullVsPoint(a, b.v[0], b.radius, margin);
+// Both hulls in the same frame; normal from a to b. The manifold is written into m (empty on
+// entry), which the caller reads field by field: returned by value, a Local written in pieces
+// and then copied out whole stalled on store forwarding (a seventh of a segment-box manifold).
+void collideLocal(const Hull& a, const Hull& b, float margin, Local& m) {
+  if (b.count == 1) return hullVsPoint(a, b.v(0), b.radius, margin, m);
   if (a.count == 1) {
-    Local m = hullVsPoint(b, a.v[0], a.radius, margin);
+    hullVsPoint(b, a.v(0), a.radius, margin, m);
     m.normal = -m.normal;
-    return m;
+    return;
   }
-  Local m;
   const float radii = a.radius + b.radius;
   int edgeA, edgeB;
   const float reach = margin + radii;
   float sepA = maxSeparation(a, b, reach, &edgeA);
-  if (sepA > reach) return m;
+  if (sepA > reach) return;
   float sepB = maxSeparation(b, a, reach, &edgeB);
-  if (sepB > reach) return m;
+  if (sepB > reach) return;
 
   // Prefer A's face unless B's is clearly better, so the reference face does not flicker
   // between two nearly equal choices from one step to the next.
@@ -293,7 +340,7 @@ Local collideLocal(const Hull& a, const Hull& b, float margin) {
   bool haveGjk = false;
   auto coreDistance = [&]() -> const DistanceOutput& {
     if (!haveGjk) {
-      ShapeProxy pa = makeProxy(a.v, a.count, 0.0f), pb = makeProxy(b.v, b.count, 0.0f);
+      ShapeProxy pa = hullProxy(a), pb = hullProxy(b);
       gjk = shapeDistance(pa, Transform{}, pb, Transform{}, &cache);
       haveGjk = true;
     }
@@ -302,12 +349,11 @@ Local collideLocal(const Hull& a, const Hull& b, float margin) {
   auto vertexContact = [&]() {
     const DistanceOutput& d = coreDistance();
     float s = d.distance - radii;
-    if (s > margin) return m;
+    if (s > margin) return;
     m.normal = d.normal;
     std::uint16_t id =
         static_cast<std::uint16_t>(0x4000 | (cache.indexA[0] << 4) | cache.indexB[0]);
     m.add(mulAdd(d.pointA, a.radius + 0.5f * s, d.normal), s, id);
-    return m;
   };
   if (sep > 0.1f * kLinearSlop || (a.count == 2 && b.count == 2)) {
     const DistanceOutput& d = coreDistance();
@@ -317,7 +363,7 @@ Local collideLocal(const Hull& a, const Hull& b, float margin) {
 
   // Reference face v1 -> v2 with normal n; incident edge: the one most against n.
   const int i1 = edge, i2 = nextIndex(edge, ref.count);
-  const Vec2 v1 = ref.v[i1], v2 = ref.v[i2], n = ref.n[edge];
+  const Vec2 v1 = ref.v(i1), v2 = ref.v(i2), n = ref.n[edge];
   int incEdge = 0;
   float minDot = 1e30f;
   for (int j = 0; j < inc.count; ++j) {
@@ -327,7 +373,7 @@ Local collideLocal(const Hull& a, const Hull& b, float margin) {
       incEdge = j;
     }
   }
-  Vec2 w[2] = {inc.v[incEdge], inc.v[nextIndex(incEdge, inc.count)]};
+  Vec2 w[2] = {inc.v(incEdge), inc.v(nextIndex(incEdge, inc.count))};
   int wid[2] = {incEdge, nextIndex(incEdge, inc.count)};
 
   // Clip the incident edge to the slab between the reference face's side planes.
@@ -345,7 +391,7 @@ Local collideLocal(const Hull& a, const Hull& b, float margin) {
     m.normal = flip ? -n : n;
     m.add(mulAdd(w[k], 0.5f * (ref.radius - inc.radius - core), n), core - radii,
           static_cast<std::uint16_t>((flip ? 0x8000 : 0) | (i1 << 8) | (wid[k] << 4) | k));
-    return m;
+    return;
   }
   if (u0 != u1) {
     auto at = [&](float u) { return lerp(w[0], w[1], (u - u0) / (u1 - u0)); };
@@ -374,7 +420,7 @@ Local collideLocal(const Hull& a, const Hull& b, float margin) {
     m.count = 1;
   }
   m.normal = flip ? -n : n;
-  return m;
+  return;
 }
 
 }  // namespace
@@ -533,7 +579,9 @@ Manifold collideHulls(const Shape& a, const Transform& xfA, const Shape& b, cons
   Hull ha, hb;
   makeLocalHull(a, &ha);
   makeHull(b, invMul(xfA, xfB), &hb);
-  return toWorld(collideLocal(ha, hb, margin), xfA, xfB);
+  Local m;
+  collideLocal(ha, hb, margin, m);
+  return toWorld(m, xfA, xfB);
 }
 
 Manifold collideChainSegment(const ChainSegment& a, const Transform& xfA, const Shape& b,
@@ -551,7 +599,8 @@ Manifold collideChainSegment(const ChainSegment& a, const Transform& xfA, const 
   }
   Hull ha;
   setTwoPointHull(&ha, p1, p2, 0.0f);
-  Local m = collideLocal(ha, hb, margin);
+  Local m;
+  collideLocal(ha, hb, margin, m);
   if (m.count == 0) return Manifold{};
   Vec2 e = p2 - p1;
   float tangential = dot(m.normal, normalize(e));

@@ -134,32 +134,39 @@ CastOutput castBox(const Box& s, const RayCastInput& in) {
   return hitAt(normal, mulAdd(in.origin, tEnter, in.translation), tEnter);
 }
 
+// A rounded polygon is its core plus a capsule on every edge. Out of line: inside the sharp
+// cast its registers and stack cost every polygon cast.
+[[gnu::noinline]] CastOutput castRoundedPolygon(const Polygon& s, const RayCastInput& in) {
+  if (containsPoint(Shape(s), Transform{}, in.origin)) return startsInside(in);
+  float length = rc::length(in.translation);
+  if (length == 0.0f) return {};
+  Vec2 dir = (1.0f / length) * in.translation;
+  CastOutput best;
+  for (int i = 0; i < s.count; ++i)
+    keepCloser(best, castCapsuleOutside(s.vertices[i], s.vertices[nextIndex(i, s.count)], s.radius,
+                                        in, length, dir));
+  return best;
+}
+
 CastOutput castPolygon(const Polygon& s, const RayCastInput& in) {
-  if (s.radius > 0.0f) {
-    // A rounded polygon is its core plus a capsule on every edge.
-    if (containsPoint(Shape(s), Transform{}, in.origin)) return startsInside(in);
-    float length = rc::length(in.translation);
-    if (length == 0.0f) return {};
-    Vec2 dir = (1.0f / length) * in.translation;
-    CastOutput best;
-    for (int i = 0; i < s.count; ++i)
-      keepCloser(best, castCapsuleOutside(s.vertices[i], s.vertices[nextIndex(i, s.count)],
-                                          s.radius, in, length, dir));
-    return best;
-  }
+  if (s.radius > 0.0f) return castRoundedPolygon(s, in);
   // Cyrus-Beck clipping of the ray against every edge's half-plane.
   float lower = 0.0f, upper = in.maxFraction;
   int index = -1;
   for (int i = 0; i < s.count; ++i) {
     float num = dot(s.normals[i], s.vertices[i] - in.origin);
     float den = dot(s.normals[i], in.translation);
-    if (den == 0.0f) {
-      if (num < 0.0f) return {};  // parallel to this edge and outside it
-    } else if (den < 0.0f && num < lower * den) {
-      lower = num / den;  // entering this half-plane later
-      index = i;
-    } else if (den > 0.0f && num < upper * den) {
-      upper = num / den;  // leaving this half-plane earlier
+    // Tested in the order of the common cases (an equality test first costs every edge a
+    // parity and an equality branch).
+    if (den < 0.0f) {
+      if (num < lower * den) {
+        lower = num / den;  // entering this half-plane later
+        index = i;
+      }
+    } else if (den > 0.0f) {
+      if (num < upper * den) upper = num / den;  // leaving this half-plane earlier
+    } else if (num < 0.0f) {
+      return {};  // parallel to this edge and outside it (or NaN input)
     }
     if (upper < lower) return {};
   }
@@ -223,13 +230,14 @@ namespace {
   if (lengthSquared(s) <= r2) return startsInside(in);
   float dd = lengthSquared(in.translation);
   float sd = dot(s, in.translation);
-  if (sd <= 0.0f || dd == 0.0f) return {};  // behind the origin (which is outside), or no ray
   float invDd = 1.0f / dd;
   float cr = cross(s, in.translation);
   float disc = r2 * dd - cr * cr;
-  if (disc < 0.0f) return {};
+  // One test turns every miss away: a line that misses the circle (disc < 0: the root is NaN),
+  // a circle behind the origin (sd <= 0, the origin being outside: t < 0), a ray of zero length
+  // (0 * inf = NaN), a circle beyond the ray's reach.
   float t = (sd - std::sqrt(disc)) * invDd;
-  if (t < 0.0f || t > in.maxFraction) return {};
+  if (!(t >= 0.0f && t <= in.maxFraction)) return {};
   // hit - centre = t d - s, over the radius (1 / r is computed off the critical path). Far out,
   // t d - s carries the rounding of s and its length drifts from r: normalised then instead.
   Vec2 n = (1.0f / c.radius) * mulSub(-1.0f * s, -t, in.translation);

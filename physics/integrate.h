@@ -23,6 +23,7 @@
 #include <optional>
 #include <span>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 namespace rc {
@@ -61,56 +62,61 @@ constexpr int evaluationsPerStep(Integrator m) {
 }
 
 // Scratch space reused from step to step, so stepping never allocates once it has grown.
-template <class T>
+// Positions may be kept in a wider type than velocities (Q = double, T = float in the world:
+// far from the origin a float position cannot take a small step, see World).
+template <class T, class Q = T>
 struct IntegratorScratch {
-  std::vector<T> a, qs, vs, dq, dv;
+  std::vector<T> a, vs, dq, dv;
+  std::vector<Q> qs;
   // A view of n elements of one of the buffers, grown when needed. (assign, not resize: g++ 12
   // warns falsely about resize's relocation when n is known to be small.)
-  static std::span<T> take(std::vector<T>& buffer, std::size_t n) {
-    if (buffer.size() < n) buffer.assign(n, T{});
-    return std::span<T>(buffer.data(), n);
+  template <class U>
+  static std::span<U> take(std::vector<U>& buffer, std::size_t n) {
+    if (buffer.size() < n) buffer.assign(n, U{});
+    return std::span<U>(buffer.data(), n);
   }
 };
 
 // One step of size h from time t: q and v (the same length) are advanced in place.
-// accel(std::span<const T> q, std::span<const T> v, T t, std::span<T> a) writes the
-// accelerations at that state.
-template <class T, class Accel>
-void integrate(Integrator method, std::span<T> q, std::span<T> v, T t, T h, Accel&& accel,
-               IntegratorScratch<T>& s) {
+// accel(std::span<const Q> q, std::span<const T> v, T t, std::span<T> a) writes the
+// accelerations at that state. Increments are computed in T and added to the positions in Q.
+template <class T, class Q = T, class Accel>
+void integrate(Integrator method, std::type_identity_t<std::span<Q>> q,
+               std::type_identity_t<std::span<T>> v, T t, T h, Accel&& accel,
+               IntegratorScratch<T, Q>& s) {
   const std::size_t n = q.size();
   const std::span<T> a = s.take(s.a, n);
   const T half = h / T(2);
   switch (method) {
     case Integrator::explicitEuler:
-      accel(std::span<const T>(q), std::span<const T>(v), t, a);
+      accel(std::span<const Q>(q), std::span<const T>(v), t, a);
       for (std::size_t i = 0; i < n; ++i) {
         q[i] += h * v[i];  // with the old velocity
         v[i] += h * a[i];
       }
       return;
     case Integrator::semiImplicitEuler:
-      accel(std::span<const T>(q), std::span<const T>(v), t, a);
+      accel(std::span<const Q>(q), std::span<const T>(v), t, a);
       for (std::size_t i = 0; i < n; ++i) {
         v[i] += h * a[i];
         q[i] += h * v[i];  // with the new velocity
       }
       return;
     case Integrator::velocityVerlet:
-      accel(std::span<const T>(q), std::span<const T>(v), t, a);
+      accel(std::span<const Q>(q), std::span<const T>(v), t, a);
       for (std::size_t i = 0; i < n; ++i) {
         v[i] += half * a[i];
         q[i] += h * v[i];
       }
-      accel(std::span<const T>(q), std::span<const T>(v), t + h, a);
+      accel(std::span<const Q>(q), std::span<const T>(v), t + h, a);
       for (std::size_t i = 0; i < n; ++i)
         v[i] += half * a[i];
       return;
     case Integrator::rk4: {
       // Classic RK4 on (q, v) with q' = v, v' = a. dq and dv accumulate k1 + 2 k2 + 2 k3 + k4.
-      const std::span<T> qs = s.take(s.qs, n), vs = s.take(s.vs, n), dq = s.take(s.dq, n),
-                         dv = s.take(s.dv, n);
-      accel(std::span<const T>(q), std::span<const T>(v), t, a);  // k1
+      const std::span<Q> qs = s.take(s.qs, n);
+      const std::span<T> vs = s.take(s.vs, n), dq = s.take(s.dq, n), dv = s.take(s.dv, n);
+      accel(std::span<const Q>(q), std::span<const T>(v), t, a);  // k1
       for (std::size_t i = 0; i < n; ++i) {
         dq[i] = v[i];
         dv[i] = a[i];
@@ -119,7 +125,7 @@ void integrate(Integrator method, std::span<T> q, std::span<T> v, T t, T h, Acce
       }
       // k2 and k3, both at t + h/2; each sets up the next stage, at t + h/2 and at t + h.
       for (const T next : {half, h}) {
-        accel(std::span<const T>(qs), std::span<const T>(vs), t + half, a);
+        accel(std::span<const Q>(qs), std::span<const T>(vs), t + half, a);
         for (std::size_t i = 0; i < n; ++i) {
           const T kq = vs[i];
           dq[i] += T(2) * kq;
@@ -128,7 +134,7 @@ void integrate(Integrator method, std::span<T> q, std::span<T> v, T t, T h, Acce
           vs[i] = v[i] + next * a[i];
         }
       }
-      accel(std::span<const T>(qs), std::span<const T>(vs), t + h, a);  // k4
+      accel(std::span<const Q>(qs), std::span<const T>(vs), t + h, a);  // k4
       const T sixth = h / T(6);
       for (std::size_t i = 0; i < n; ++i) {
         q[i] += sixth * (dq[i] + vs[i]);

@@ -80,11 +80,13 @@ int ForceStage::slot(BodyId id) const {
 Vec2 ForceStage::center(BodyId id) const {
   const int s = slot(id);
   if (s < 0) return world_.center(world_.body(id));
-  return {q_[3 * static_cast<std::size_t>(s)], q_[3 * static_cast<std::size_t>(s) + 1]};
+  return {static_cast<float>(q_[3 * static_cast<std::size_t>(s)]),
+          static_cast<float>(q_[3 * static_cast<std::size_t>(s) + 1])};
 }
 float ForceStage::angle(BodyId id) const {
   const int s = slot(id);
-  return s < 0 ? world_.body(id).angle : q_[3 * static_cast<std::size_t>(s) + 2];
+  return s < 0 ? world_.body(id).angle
+               : static_cast<float>(q_[3 * static_cast<std::size_t>(s) + 2]);
 }
 Vec2 ForceStage::velocity(BodyId id) const {
   const int s = slot(id);
@@ -148,7 +150,24 @@ Vec2 World::velocityOf(const Body& b) const {
 Vec2 World::center(const Body& b) const {
   if (b.slot < 0) return apply(b.xf, b.localCenter);
   const auto i = 3 * static_cast<std::size_t>(b.slot);
-  return {q_[i], q_[i + 1]};
+  return {static_cast<float>(q_[i]), static_cast<float>(q_[i + 1])};
+}
+
+Sweep World::stepSweep(const Body& b) const {
+  const auto s = static_cast<std::size_t>(b.slot);
+  const std::size_t i = 3 * s;
+  return {b.localCenter,
+          {static_cast<float>(startCenter_[2 * s]), static_cast<float>(startCenter_[2 * s + 1])},
+          {static_cast<float>(q_[i]), static_cast<float>(q_[i + 1])},
+          static_cast<float>(startAngle_[s]),
+          static_cast<float>(q_[i + 2])};
+}
+
+std::array<double, 2> World::preciseOrigin(const Body& b) const {
+  if (b.slot < 0) return {b.xf.p.x, b.xf.p.y};
+  const auto i = 3 * static_cast<std::size_t>(b.slot);
+  const Vec2 turned = rotate(b.xf.q, b.localCenter);
+  return {q_[i] - turned.x, q_[i + 1] - turned.y};
 }
 
 BodyId World::createBody(const BodyDef& def) {
@@ -422,7 +441,8 @@ void World::updateMass(Body& b) {
     if (r.shape.isSolid() && r.density > 0.0f) parts.push_back(computeMass(r.shape, r.density));
   }
   const MassData m = combineMass(parts);
-  const Vec2 oldCenter = center(b);
+  const std::array<double, 2> origin = preciseOrigin(b);
+  const Vec2 oldLocalCenter = b.localCenter;
   if (m.mass > 0.0f) {
     b.mass = m.mass;
     b.localCenter = m.center;
@@ -436,11 +456,11 @@ void World::updateMass(Body& b) {
   b.invInertia = (b.fixedRotation || b.inertia <= 0.0f) ? 0.0f : 1.0f / b.inertia;
   // The centre of mass moved: keep the origin where it is and the motion of every point.
   const auto i = 3 * static_cast<std::size_t>(b.slot);
-  const Vec2 newCenter = apply(b.xf, b.localCenter);
+  const Vec2 turned = rotate(b.xf.q, b.localCenter);
   const float w = v_[i + 2];
-  const Vec2 shift = cross(w, newCenter - oldCenter);
-  q_[i] = newCenter.x;
-  q_[i + 1] = newCenter.y;
+  const Vec2 shift = cross(w, rotate(b.xf.q, b.localCenter - oldLocalCenter));
+  q_[i] = origin[0] + turned.x;
+  q_[i + 1] = origin[1] + turned.y;
   v_[i] += shift.x;
   v_[i + 1] += shift.y;
 }
@@ -449,6 +469,9 @@ void World::updateMass(Body& b) {
 
 Vec2 World::position(BodyId id) const {
   return body(id).xf.p;
+}
+std::array<double, 2> World::precisePosition(BodyId id) const {
+  return preciseOrigin(body(id));
 }
 float World::angle(BodyId id) const {
   return body(id).angle;
@@ -599,24 +622,28 @@ int World::touchingContactCount() const {
 
 std::uint64_t World::stateHash() const {
   std::uint64_t h = 0xcbf29ce484222325ull;
-  auto mix = [&](float f) {
-    const auto bits = std::bit_cast<std::uint32_t>(f);
-    for (int k = 0; k < 4; ++k) {
+  auto mixBits = [&](std::uint64_t bits, int bytes) {
+    for (int k = 0; k < bytes; ++k) {
       h ^= (bits >> (8 * k)) & 0xFFu;
       h *= 0x100000001b3ull;
     }
   };
+  auto mix = [&](float f) { mixBits(std::bit_cast<std::uint32_t>(f), 4); };
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     const Body& b = bodies_[i];
     if (!b.alive) continue;
-    mix(b.xf.p.x);
-    mix(b.xf.p.y);
-    mix(b.angle);
-    if (b.slot >= 0) {
-      const auto s = 3 * static_cast<std::size_t>(b.slot);
-      for (int k = 0; k < 3; ++k)
-        mix(v_[s + static_cast<std::size_t>(k)]);
+    if (b.slot < 0) {
+      mix(b.xf.p.x);
+      mix(b.xf.p.y);
+      mix(b.angle);
+      continue;
     }
+    // The state as the world keeps it: double centre and angle, float velocities.
+    const auto s = 3 * static_cast<std::size_t>(b.slot);
+    for (std::size_t k = 0; k < 3; ++k)
+      mixBits(std::bit_cast<std::uint64_t>(q_[s + k]), 8);
+    for (std::size_t k = 0; k < 3; ++k)
+      mix(v_[s + k]);
   }
   return h;
 }
@@ -671,11 +698,12 @@ void World::step(float dt) {
   for (std::size_t s = 0; s < static_cast<std::size_t>(awakeCount_); ++s) {
     Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
     const auto i = 3 * static_cast<std::size_t>(b.slot);
-    if (q_[i + 2] != b.angle) {  // no trigonometry for bodies that did not turn
-      b.angle = q_[i + 2];
+    if (static_cast<float>(q_[i + 2]) != b.angle) {  // no trigonometry for bodies that did not turn
+      b.angle = static_cast<float>(q_[i + 2]);
       b.xf.q = Rot::fromAngle(b.angle);
     }
-    b.xf.p = Vec2{q_[i], q_[i + 1]} - rotate(b.xf.q, b.localCenter);
+    const std::array<double, 2> origin = preciseOrigin(b);
+    b.xf.p = {static_cast<float>(origin[0]), static_cast<float>(origin[1])};
     b.force = {};
     b.torque = 0.0f;
     refitBody(b, dt * Vec2{v_[i], v_[i + 1]});  // where it goes next step
@@ -772,8 +800,14 @@ void World::narrowphase(float dt) {
       destroyContact(i);
       continue;
     }
-    const Transform& xfA = bodies_[static_cast<std::size_t>(ra.body)].xf;
-    const Transform& xfB = bodies_[static_cast<std::size_t>(rb.body)].xf;
+    // In A's frame translated to A's origin, B placed by the difference of the two origins
+    // taken in double: far from the world origin the float origins are too coarse (1 mm apart
+    // 10 km out) for the separations a resting contact needs.
+    const std::array<double, 2> originA = preciseOrigin(bodyA), originB = preciseOrigin(bodyB);
+    const Transform xfA{{}, bodyA.xf.q};
+    const Transform xfB{
+        {static_cast<float>(originB[0] - originA[0]), static_cast<float>(originB[1] - originA[1])},
+        bodyB.xf.q};
     const Manifold old = c.manifold;
     const float oldNormal[2] = {c.normalImpulse[0], c.normalImpulse[1]};
     const float oldTangent[2] = {c.tangentImpulse[0], c.tangentImpulse[1]};
@@ -781,6 +815,8 @@ void World::narrowphase(float dt) {
                              ? kSpeculativeDistance + dt * (reachSpeed(ra) + reachSpeed(rb))
                              : kSpeculativeDistance;
     c.manifold = collide(ra.shape, xfA, rb.shape, xfB, margin);
+    for (int k = 0; k < c.manifold.pointCount; ++k)
+      c.manifold.points[k].point += bodyA.xf.p;
     // Warm start: a point keeps last step's impulses when the same features touch.
     for (int k = 0; k < c.manifold.pointCount; ++k) {
       c.normalImpulse[k] = c.tangentImpulse[k] = 0.0f;
@@ -834,7 +870,7 @@ void applyImpulse(const Constraint& cc, const Point& p, Vec2 P, Vec2& vA, float&
 
 }  // namespace
 
-void World::accelerations(std::span<const float> q, std::span<const float> v, float t,
+void World::accelerations(std::span<const double> q, std::span<const float> v, float t,
                           std::span<float> a) {
   for (std::size_t s = 0; s < static_cast<std::size_t>(awakeCount_); ++s) {
     const Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
@@ -981,24 +1017,26 @@ void World::solve(float dt) {
   profile_.colours = contactSolver_.colourCount();
   profile_.overflow = contactSolver_.overflowCount();
 
-  startCenter_.resize(slots);
+  startCenter_.resize(2 * slots);
   startAngle_.resize(slots);
   solverBodies_.assign(slots + 1, SolverBody{});  // the last: the null body
   for (std::size_t s = 0; s < slots; ++s) {
-    startCenter_[s] = {q_[3 * s], q_[3 * s + 1]};
+    startCenter_[2 * s] = q_[3 * s];
+    startCenter_[2 * s + 1] = q_[3 * s + 1];
     startAngle_[s] = q_[3 * s + 2];
   }
 
   const float h = dt / static_cast<float>(def_.substeps);
   const ContactSoftness soft =
       ContactSoftness::make(h, def_.contactHertz, def_.contactDampingRatio, def_.maxPushoutSpeed);
-  auto accel = [this](std::span<const float> q, std::span<const float> v, float t,
+  auto accel = [this](std::span<const double> q, std::span<const float> v, float t,
                       std::span<float> a) { accelerations(q, v, t, a); };
   for (int sub = 0; sub < def_.substeps; ++sub) {
     const float t = static_cast<float>(time_) + static_cast<float>(sub) * h;
     // Free motion by the world's integrator, then damping (implicit, unconditionally stable).
-    const std::span<float> q(q_.data(), 3 * slots), v(v_.data(), 3 * slots);
-    integrate<float>(def_.integrator, q, v, t, h, accel, scratch_);
+    const std::span<double> q(q_.data(), 3 * slots);
+    const std::span<float> v(v_.data(), 3 * slots);
+    integrate<float, double>(def_.integrator, q, v, t, h, accel, scratch_);
     for (std::size_t s = 0; s < slots; ++s) {
       const Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
       if (b.linearDamping > 0.0f) {
@@ -1023,12 +1061,18 @@ void World::solve(float dt) {
     // solver's bodies; v_ takes them after the relax pass).
     for (std::size_t s = 0; s < slots; ++s) {
       SolverBody& sb = solverBodies_[s];
-      q_[3 * s] += h * (sb.v.x - freeV_[3 * s]);
-      q_[3 * s + 1] += h * (sb.v.y - freeV_[3 * s + 1]);
-      q_[3 * s + 2] += h * (sb.w - freeV_[3 * s + 2]);
-      sb.dp = Vec2{q_[3 * s], q_[3 * s + 1]} - startCenter_[s];
+      // Kept in registers: read back from q_, the three double stores would stall the loads
+      // (a third of the solve in the 1000-circle arena).
+      const double x = q_[3 * s] + h * (sb.v.x - freeV_[3 * s]);
+      const double y = q_[3 * s + 1] + h * (sb.v.y - freeV_[3 * s + 1]);
+      const double a = q_[3 * s + 2] + h * (sb.w - freeV_[3 * s + 2]);
+      q_[3 * s] = x;
+      q_[3 * s + 1] = y;
+      q_[3 * s + 2] = a;
+      sb.dp = {static_cast<float>(x - startCenter_[2 * s]),
+               static_cast<float>(y - startCenter_[2 * s + 1])};
       // Bodies that do not turn (fixed rotation, or just not spinning) cost no trigonometry.
-      const float turned = q_[3 * s + 2] - startAngle_[s];
+      const auto turned = static_cast<float>(a - startAngle_[s]);
       sb.dq = turned == 0.0f ? Rot{} : Rot::fromAngle(turned);
     }
     // Relax: the same solve without the push-out bias, so separating bodies keep no speed
@@ -1080,9 +1124,7 @@ void World::updateSensors() {
     if (!now && !sp.overlapping && awake(vb)) {
       // Not in it before or after: did the visitor's path cross it? (Its translation only;
       // the sensor at its end transform.)
-      const auto s = static_cast<std::size_t>(vb.slot);
-      const Sweep sweep{vb.localCenter, startCenter_[s], Vec2{q_[3 * s], q_[3 * s + 1]},
-                        startAngle_[s], q_[3 * s + 2]};
+      const Sweep sweep = stepSweep(vb);
       const Vec2 move = sweep.c2 - sweep.c1;
       if (move != Vec2{}) {
         const CastOutput cast = shapeCast(makeProxy(visitor.shape), sweepTransform(sweep, 0.0f),
@@ -1116,16 +1158,15 @@ void World::continuous() {
   // Bodies are taken in slot order; one already stopped sweeps only as far as it went.
   auto sweepOf = [&](const Body& body) -> Sweep {
     if (!awake(body)) return {{}, body.xf.p, body.xf.p, body.angle, body.angle};
+    return stepSweep(body);
+  };
+  // Back along the step's motion to the fraction t of it, in double like the positions.
+  auto placeAt = [&](const Body& body, float t) {
     const auto s = static_cast<std::size_t>(body.slot);
     const std::size_t i = 3 * s;
-    return {body.localCenter, startCenter_[s], {q_[i], q_[i + 1]}, startAngle_[s], q_[i + 2]};
-  };
-  auto placeAt = [&](const Body& body, const Sweep& sweep, float t) {
-    const std::size_t i = 3 * static_cast<std::size_t>(body.slot);
-    const Vec2 c = lerp(sweep.c1, sweep.c2, t);
-    q_[i] = c.x;
-    q_[i + 1] = c.y;
-    q_[i + 2] = sweep.a1 + t * (sweep.a2 - sweep.a1);
+    for (std::size_t k = 0; k < 2; ++k)
+      q_[i + k] = startCenter_[2 * s + k] + t * (q_[i + k] - startCenter_[2 * s + k]);
+    q_[i + 2] = startAngle_[s] + t * (q_[i + 2] - startAngle_[s]);
   };
   for (std::size_t s = 0; s < static_cast<std::size_t>(awakeCount_); ++s) {
     Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
@@ -1167,9 +1208,9 @@ void World::continuous() {
     if (first < 1.0f) {
       if (hitBody >= 0) {
         const Body& other = bodies_[static_cast<std::size_t>(hitBody)];
-        if (other.type == BodyType::dynamicBody) placeAt(other, sweepOf(other), first);
+        if (other.type == BodyType::dynamicBody) placeAt(other, first);
       }
-      placeAt(b, sweep, first);
+      placeAt(b, first);
     }
   }
 }

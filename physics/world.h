@@ -42,6 +42,7 @@
 // order on an orbit or a spring), and with semi-implicit Euler this is Box2D's update.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -55,6 +56,7 @@
 #include "physics/integrate.h"
 #include "physics/manifold.h"
 #include "physics/shapes.h"
+#include "physics/toi.h"
 
 namespace rc {
 
@@ -196,12 +198,13 @@ class ForceStage {
 
  private:
   friend class World;
-  ForceStage(World& world, std::span<const float> q, std::span<const float> v, std::span<float> a,
+  ForceStage(World& world, std::span<const double> q, std::span<const float> v, std::span<float> a,
              float time)
       : world_(world), q_(q), v_(v), a_(a), time_(time) {}
   int slot(BodyId id) const;
   World& world_;
-  std::span<const float> q_, v_;
+  std::span<const double> q_;
+  std::span<const float> v_;
   std::span<float> a_;
   float time_;
 };
@@ -221,6 +224,9 @@ class World {
   // Body state.
   bool isValid(BodyId id) const;
   Vec2 position(BodyId id) const;  // body origin
+  // The body origin as the world keeps it, in double: far from the world origin a float
+  // position is coarse (1 mm apart 10 km out) and position() rounds to it.
+  std::array<double, 2> precisePosition(BodyId id) const;
   float angle(BodyId id) const;
   Transform transform(BodyId id) const;
   Vec2 worldCenter(BodyId id) const;
@@ -363,8 +369,13 @@ class World {
   void wakeBody(Body& b);
   void swapSlots(std::int32_t a, std::int32_t b);
   void destroyContact(std::size_t index);
-  void accelerations(std::span<const float> q, std::span<const float> v, float t,
+  void accelerations(std::span<const double> q, std::span<const float> v, float t,
                      std::span<float> a);
+  // The body's origin in double (its centre minus the turned local centre): what the
+  // narrowphase takes differences of.
+  std::array<double, 2> preciseOrigin(const Body& b) const;
+  // An awake body's motion over the step so far, from where it started (float: for sweeps).
+  Sweep stepSweep(const Body& b) const;
 
   WorldDef def_;
   Quadtree broadphase_;
@@ -374,15 +385,19 @@ class World {
   std::vector<Contact> contacts_;
   std::vector<ForceField> fields_;
   // Per simulated (kinematic and dynamic) body, three degrees of freedom: x, y and angle of the
-  // centre of mass, and their velocities. Bodies hold their slot.
-  std::vector<float> q_, v_;
+  // centre of mass, and their velocities. Bodies hold their slot. Positions are doubles: 10 km
+  // out a float position moves in steps of 1 mm and a settling pile cannot take the small steps
+  // it needs (everything else, velocities, impulses, shapes and the narrowphase, which works
+  // relative to body A, is float).
+  std::vector<double> q_;
+  std::vector<float> v_;
   std::vector<std::int32_t> slotBody_;
   // Slots [0, awakeCount_) are awake; sleeping bodies' slots follow, untouched by the step.
   int awakeCount_ = 0;
   std::vector<std::vector<std::int32_t>> islands_;  // sleeping islands: their bodies
   std::vector<std::int32_t> freeIslands_;
   std::vector<std::int32_t> islandParent_;  // union-find over awake slots, per step
-  IntegratorScratch<float> scratch_;
+  IntegratorScratch<float, double> scratch_;
   std::vector<ProxyPair> newPairs_;
   // Bodies created, moved or given a velocity since the last step: their proxies are stretched
   // along their first step's motion before pairs are found.
@@ -394,8 +409,8 @@ class World {
   // prepared), plus the null body at the end.
   std::vector<float> freeV_;
   std::vector<SolverBody> solverBodies_;
-  std::vector<float> startAngle_;
-  std::vector<Vec2> startCenter_;
+  std::vector<double> startCenter_;  // x and y per slot
+  std::vector<double> startAngle_;
   ContactEvents events_;
   SensorEvents sensorEvents_;
   // Sensor shapes and the shapes whose fat AABBs overlap them.

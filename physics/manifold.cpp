@@ -28,8 +28,8 @@ struct Hull {
   Vec2 v(int i) const { return {x[i >> 2][i & 3], y[i >> 2][i & 3]}; }
 };
 
-// Fills only the two points in use: a Hull is 176 bytes, and building one aside and copying it
-// over was a fifth of a segment-box manifold.
+// Fills only the first group of lanes and the two normals: a Hull is 144 bytes, and building
+// one aside and copying it over was a fifth of a segment-box manifold.
 void setTwoPointHull(Hull* out, Vec2 a, Vec2 b, float radius) {
   Hull& h = *out;
   h.count = 2;

@@ -4,7 +4,6 @@
 // expression gives (the build has -ffp-contract=off).
 #include <bit>
 #include <cstdint>
-#include <cstring>
 
 #include "physics/math.h"
 

@@ -163,6 +163,16 @@ Sweep World::stepSweep(const Body& b) const {
           static_cast<float>(q_[i + 2])};
 }
 
+template <class Apply>
+void World::applyTurns(Apply&& apply) {
+  turnRotations_.resize(turnAngles_.size());
+  sincos(turnAngles_, turnRotations_);
+  for (std::size_t k = 0; k < turnAngles_.size(); ++k)
+    apply(turnOwners_[k], Rot{turnRotations_[k].cosine, turnRotations_[k].sine});
+  turnAngles_.clear();
+  turnOwners_.clear();
+}
+
 std::array<double, 2> World::preciseOrigin(const Body& b) const {
   if (b.slot < 0) return {b.xf.p.x, b.xf.p.y};
   const auto i = 3 * static_cast<std::size_t>(b.slot);
@@ -420,6 +430,15 @@ ShapeId World::createShape(BodyId bodyId, const Shape& shape, const ShapeDef& de
   return {index, 1};
 }
 
+bool World::isRound(const Body& b) const {
+  if (b.shapes.empty()) return false;
+  for (std::int32_t s : b.shapes) {
+    const Shape& shape = shapes_[static_cast<std::size_t>(s)].shape;
+    if (shape.type != ShapeType::circle || shape.circle.center != b.localCenter) return false;
+  }
+  return true;
+}
+
 void World::updateMass(Body& b) {
   b.mass = b.invMass = b.inertia = b.invInertia = 0.0f;
   // Extents for continuous collision: the thinnest shape's half-thickness (a lower bound),
@@ -433,6 +452,7 @@ void World::updateMass(Body& b) {
   }
   if (b.type != BodyType::dynamicBody) {
     b.localCenter = {};
+    b.round = isRound(b);
     return;
   }
   std::vector<MassData> parts;
@@ -454,6 +474,7 @@ void World::updateMass(Body& b) {
   }
   b.invMass = 1.0f / b.mass;
   b.invInertia = (b.fixedRotation || b.inertia <= 0.0f) ? 0.0f : 1.0f / b.inertia;
+  b.round = isRound(b);
   // The centre of mass moved: keep the origin where it is and the motion of every point.
   const auto i = 3 * static_cast<std::size_t>(b.slot);
   const Vec2 turned = rotate(b.xf.q, b.localCenter);
@@ -697,11 +718,17 @@ void World::step(float dt) {
   // Transforms, AABBs and proxies from the new positions; forces are used up.
   for (std::size_t s = 0; s < static_cast<std::size_t>(awakeCount_); ++s) {
     Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
-    const auto i = 3 * static_cast<std::size_t>(b.slot);
-    if (static_cast<float>(q_[i + 2]) != b.angle) {  // no trigonometry for bodies that did not turn
-      b.angle = static_cast<float>(q_[i + 2]);
-      b.xf.q = Rot::fromAngle(b.angle);
+    const auto angle = static_cast<float>(q_[3 * s + 2]);
+    if (angle != b.angle) {  // no trigonometry for bodies that did not turn
+      b.angle = angle;
+      turnAngles_.push_back(angle);
+      turnOwners_.push_back(slotBody_[s]);
     }
+  }
+  applyTurns([&](std::int32_t body, Rot q) { bodies_[static_cast<std::size_t>(body)].xf.q = q; });
+  for (std::size_t s = 0; s < static_cast<std::size_t>(awakeCount_); ++s) {
+    Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
+    const auto i = 3 * static_cast<std::size_t>(b.slot);
     const std::array<double, 2> origin = preciseOrigin(b);
     b.xf.p = {static_cast<float>(origin[0]), static_cast<float>(origin[1])};
     b.force = {};
@@ -1019,11 +1046,13 @@ void World::solve(float dt) {
 
   startCenter_.resize(2 * slots);
   startAngle_.resize(slots);
+  slotRound_.resize(slots);
   solverBodies_.assign(slots + 1, SolverBody{});  // the last: the null body
   for (std::size_t s = 0; s < slots; ++s) {
     startCenter_[2 * s] = q_[3 * s];
     startCenter_[2 * s + 1] = q_[3 * s + 1];
     startAngle_[s] = q_[3 * s + 2];
+    slotRound_[s] = bodies_[static_cast<std::size_t>(slotBody_[s])].round;
   }
 
   const float h = dt / static_cast<float>(def_.substeps);
@@ -1071,10 +1100,18 @@ void World::solve(float dt) {
       q_[3 * s + 2] = a;
       sb.dp = {static_cast<float>(x - startCenter_[2 * s]),
                static_cast<float>(y - startCenter_[2 * s + 1])};
-      // Bodies that do not turn (fixed rotation, or just not spinning) cost no trigonometry.
+      // Bodies that do not turn (fixed rotation, or just not spinning) cost no trigonometry,
+      // and neither do round ones: the anchors rotate with the body so that a turning body's
+      // corners move, but a circle about the centre of mass has no corners, and rotating its
+      // anchor would only tilt the separation estimate by r (1 - cos turned).
       const auto turned = static_cast<float>(a - startAngle_[s]);
-      sb.dq = turned == 0.0f ? Rot{} : Rot::fromAngle(turned);
+      sb.dq = Rot{};
+      if (turned != 0.0f && !slotRound_[s]) {
+        turnAngles_.push_back(turned);
+        turnOwners_.push_back(static_cast<std::int32_t>(s));
+      }
     }
+    applyTurns([&](std::int32_t s, Rot dq) { solverBodies_[static_cast<std::size_t>(s)].dq = dq; });
     // Relax: the same solve without the push-out bias, so separating bodies keep no speed
     // from it (the bias pushes positions apart; relax removes its velocity).
     contactSolver_.solve(solverBodies_, soft, false, !backward);

@@ -319,6 +319,9 @@ class World {
     std::int32_t island = -1;  // its sleeping island, -1 while awake
     std::uint64_t userData = 0;
     std::int32_t slot = -1;  // in q_ and v_; -1 for static bodies
+    // Every shape a circle about the centre of mass: turning moves none of its contact
+    // geometry, so the solver does not rotate its contact anchors (see solve()).
+    bool round = false;
     std::vector<std::int32_t> shapes;
   };
   struct ShapeRecord {
@@ -411,6 +414,16 @@ class World {
   std::vector<SolverBody> solverBodies_;
   std::vector<double> startCenter_;  // x and y per slot
   std::vector<double> startAngle_;
+  std::vector<std::uint8_t> slotRound_;  // Body::round per slot
+  // Angles whose sine and cosine are wanted, taken in one batch (see rc::sincos), and the
+  // bodies or slots they belong to.
+  std::vector<float> turnAngles_;
+  std::vector<SinCos> turnRotations_;
+  std::vector<std::int32_t> turnOwners_;
+  bool isRound(const Body& b) const;
+  // Takes the queued angles' sines and cosines and hands each owner its rotation.
+  template <class Apply>
+  void applyTurns(Apply&& apply);
   ContactEvents events_;
   SensorEvents sensorEvents_;
   // Sensor shapes and the shapes whose fat AABBs overlap them.

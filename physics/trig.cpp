@@ -61,7 +61,7 @@ double atanUnit(double t) {
   return offset + t * p;
 }
 
-// nearbyint(v) in the default rounding mode, for |v| < 2^52, without the library call (a call
+// nearbyint(v) in the default rounding mode, for |v| < 2^51, without the library call (a call
 // through the PLT; x86-64 before SSE4.1 has no rounding instruction): adding 1.5 * 2^52 leaves
 // no fraction bits, so the sum rounds |v| to an integer, ties to even, exactly as nearbyint
 // does. The sign is put back, so -0.3 gives -0 as nearbyint does.
@@ -115,7 +115,8 @@ SinCos sincos(float radians) {
 }
 
 void sincos(std::span<const float> radians, std::span<SinCos> out) {
-  for (std::size_t i = 0; i < radians.size(); ++i)
+  const std::size_t n = radians.size() < out.size() ? radians.size() : out.size();
+  for (std::size_t i = 0; i < n; ++i)
     out[i] = sincosInline(radians[i]);
 }
 

@@ -26,8 +26,8 @@ struct SinCos {
 };
 
 SinCos sincos(float radians);
-// out[i] = sincos(radians[i]), bit for bit, over spans of the same length. For many angles at
-// once (every turning body each step): the calls are independent and, in one loop with the
+// out[i] = sincos(radians[i]), bit for bit, for i below the shorter span's length. For many angles
+// at once (every turning body each step): the calls are independent and, in one loop with the
 // polynomials inlined, overlap in the processor; one by one inside a longer loop each waits out
 // its polynomial chains.
 void sincos(std::span<const float> radians, std::span<SinCos> out);

@@ -163,6 +163,14 @@ Sweep World::stepSweep(const Body& b) const {
           static_cast<float>(q_[i + 2])};
 }
 
+// Room for n queued turns before any is queued, so that an allocation failure cannot leave the
+// angles and their owners of different lengths.
+void World::reserveTurns(std::size_t n) {
+  turnAngles_.reserve(n);
+  turnOwners_.reserve(n);
+  turnRotations_.reserve(n);
+}
+
 template <class Apply>
 void World::applyTurns(Apply&& apply) {
   turnRotations_.resize(turnAngles_.size());
@@ -716,6 +724,7 @@ void World::step(float dt) {
   profile_.continuous = millisecondsSince(t);
   t = Clock::now();
   // Transforms, AABBs and proxies from the new positions; forces are used up.
+  reserveTurns(static_cast<std::size_t>(awakeCount_));
   for (std::size_t s = 0; s < static_cast<std::size_t>(awakeCount_); ++s) {
     Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
     const auto angle = static_cast<float>(q_[3 * s + 2]);
@@ -1088,6 +1097,7 @@ void World::solve(float dt) {
     contactSolver_.solve(solverBodies_, soft, true, backward);
     // Positions: the free motion plus what the contacts changed in the velocity (read from the
     // solver's bodies; v_ takes them after the relax pass).
+    reserveTurns(slots);
     for (std::size_t s = 0; s < slots; ++s) {
       SolverBody& sb = solverBodies_[s];
       // Kept in registers: read back from q_, the three double stores would stall the loads

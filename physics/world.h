@@ -421,6 +421,7 @@ class World {
   std::vector<SinCos> turnRotations_;
   std::vector<std::int32_t> turnOwners_;
   bool isRound(const Body& b) const;
+  void reserveTurns(std::size_t n);
   // Takes the queued angles' sines and cosines and hands each owner its rotation.
   template <class Apply>
   void applyTurns(Apply&& apply);

@@ -37,26 +37,67 @@ TEST(Trig, ExactValuesAndSymmetry) {
   }
 }
 
-// The batch form (used for every turning body each step) gives the one-by-one bits, over
-// every magnitude the reduction treats differently: small (no reduction), ordinary, past
-// 2^52 / (2/pi) where every multiple is an integer already, past 2^63 where the quadrant can
-// no longer be taken from a 64-bit integer, and the signed zeros.
-TEST(Trig, BatchMatchesOneByOne) {
+// A reference for the reduction as it was first written: std::nearbyint for the multiple of
+// pi/2, each polynomial on its own, a switch on the quadrant. The fast rounding, the two-lane
+// polynomials and the quadrant masks must give its bits exactly below 2^24 rad.
+rc::SinCos referenceSinCos(float radians) {
+  const double pio2Hi = 1.57079632673412561417e+00, pio2Mid = 6.07710050650619224932e-11,
+               pio2Lo = 2.02226624879595063154e-21, twoOverPi = 6.36619772367581382433e-01;
+  const double x = radians;
+  const double k = std::nearbyint(x * twoOverPi);
+  const double r = ((x - k * pio2Hi) - k * pio2Mid) - k * pio2Lo;
+  const double r2 = r * r;
+  double p = 1.0 / 6227020800.0;
+  for (double c : {-1.0 / 39916800.0, 1.0 / 362880.0, -1.0 / 5040.0, 1.0 / 120.0, -1.0 / 6.0})
+    p = p * r2 + c;
+  const double sine = r + r * r2 * p;
+  p = 1.0 / 87178291200.0;
+  for (double c :
+       {-1.0 / 479001600.0, 1.0 / 3628800.0, -1.0 / 40320.0, 1.0 / 720.0, -1.0 / 24.0, 0.5})
+    p = p * r2 + c;
+  const double cosine = 1.0 - r2 * p;
+  switch (static_cast<long long>(k) & 3) {
+    case 0:
+      return {static_cast<float>(sine), static_cast<float>(cosine)};
+    case 1:
+      return {static_cast<float>(cosine), static_cast<float>(-sine)};
+    case 2:
+      return {static_cast<float>(-sine), static_cast<float>(-cosine)};
+    default:
+      return {static_cast<float>(-cosine), static_cast<float>(sine)};
+  }
+}
+
+std::uint64_t bits(rc::SinCos sc) {
+  return std::uint64_t{std::bit_cast<std::uint32_t>(sc.sine)} << 32 |
+         std::bit_cast<std::uint32_t>(sc.cosine);
+}
+
+// Below 2^24 rad: the reference's bits, one by one and in the batch form (used for every
+// turning body each step), over every magnitude, the multiples of pi/4 where the rounding
+// ties, and the signed zeros. Above: the batch form still gives the one-by-one bits.
+TEST(Trig, BitsOfTheReferenceReduction) {
   rc::Random rng(7);
-  std::vector<float> angles = {0.0f, -0.0f, 0.5f, -0.785f, 1e20f, -3.4e38f, 7.1e15f};
+  std::vector<float> angles = {0.0f, -0.0f, 0.5f, -0.785f, 0x1p24f, -0x1p24f};
+  for (int m = -64; m <= 64; ++m) {
+    const float q = static_cast<float>(m) * (rc::kPi / 4);
+    angles.insert(angles.end(), {q, std::nextafter(q, 1e9f), std::nextafter(q, -1e9f)});
+  }
   for (int i = 0; i < 20000; ++i) {
-    const float scale = std::ldexp(1.0f, static_cast<int>(rng.below(130)) - 20);
+    const float scale = std::ldexp(1.0f, static_cast<int>(rng.below(45)) - 20);  // to 2^24
     angles.push_back(rng.uniform(-scale, scale));
   }
+  const std::size_t belowLimit = angles.size();
+  for (float huge : {0x1.000002p24f, 1e20f, -3.4e38f, 7.1e15f})
+    angles.push_back(huge);
   std::vector<rc::SinCos> batch(angles.size());
   rc::sincos(angles, batch);
   for (std::size_t i = 0; i < angles.size(); ++i) {
     const rc::SinCos one = rc::sincos(angles[i]);
-    ASSERT_EQ(std::bit_cast<std::uint32_t>(batch[i].sine), std::bit_cast<std::uint32_t>(one.sine))
-        << angles[i];
-    ASSERT_EQ(std::bit_cast<std::uint32_t>(batch[i].cosine),
-              std::bit_cast<std::uint32_t>(one.cosine))
-        << angles[i];
+    ASSERT_EQ(bits(batch[i]), bits(one)) << angles[i];
+    if (i < belowLimit) {
+      ASSERT_EQ(bits(one), bits(referenceSinCos(angles[i]))) << angles[i];
+    }
   }
 }
 

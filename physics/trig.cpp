@@ -82,9 +82,6 @@ float negateIf(bool flip, float a) {
                               (static_cast<std::uint32_t>(flip) << 31));
 }
 
-}  // namespace
-
-namespace {
 [[gnu::always_inline]] inline SinCos sincosInline(float radians) {
   if (!std::isfinite(radians)) {
     float nan = std::numeric_limits<float>::quiet_NaN();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace rc {
 namespace {
@@ -12,8 +13,12 @@ constexpr CastOutput hitAt(Vec2 normal, Vec2 point, float fraction) {
   return {normal, point, fraction, 0, true};
 }
 
+// The normal against the ray. A translation whose squared length overflows (a polygon's cast
+// takes such rays unscaled) is shortened by an exact power of two first.
 CastOutput startsInside(const RayCastInput& in) {
-  return hitAt(-normalize(in.translation), in.origin, 0.0f);
+  Vec2 d = in.translation;
+  if (!std::isfinite(lengthSquared(d))) d = 0x1p-70f * d;
+  return hitAt(-normalize(d), in.origin, 0.0f);
 }
 
 // Ray against a circle, stable for rays far longer than the radius: project the centre on the
@@ -287,11 +292,58 @@ template <class Cast>
   return out;
 }
 
+// An oriented box (makeOrientedBox's rectangle) crossed as two slabs in the world frame (Kay and
+// Kajiya, on the box's own axes): no round trip through the shape's frame and no vertex loads.
+// With c the box centre from the ray origin, u an axis, h the half extent along it and
+// d = dot(u, translation), the ray is within that slab for t * d in [dot(u, c) - h,
+// dot(u, c) + h]; it enters through the face that d approaches. Every NaN or infinity from
+// unguarded input (an offset that overflows, a translation of infinities) makes an entry or its
+// slab's exit NaN, or an entry of +inf or an exit of -inf, and each of those fails the final
+// test: such a cast misses, as the guarded path would decide.
+[[gnu::always_inline]] inline CastOutput rayCastOrientedBoxWorld(const Polygon& p,
+                                                                 const Transform& xf,
+                                                                 const RayCastInput& in) {
+  const Vec2 c = (xf.p - in.origin) + rotate(xf.q, p.centroid);
+  const Vec2 u = rotate(xf.q, p.normals[1]);  // the box's x axis; its y axis is leftPerp(u)
+  const Vec2 v = leftPerp(u);
+  const float cu = dot(u, c), cv = dot(v, c);
+  const float hu = p.boxHalfExtents.x, hv = p.boxHalfExtents.y;
+  // Inside, boundary included, as for every solid shape (raycast.h).
+  if (std::abs(cu) <= hu && std::abs(cv) <= hv) return startsInside(in);
+  const float du = dot(u, in.translation), dv = dot(v, in.translation);
+  // A ray parallel to a slab is either always within it or never; the division would give
+  // 0/0 on the slab's boundary, so the case is taken apart (rare and well predicted).
+  float enterU = -std::numeric_limits<float>::infinity(), exitU = -enterU;
+  float enterV = enterU, exitV = exitU;
+  if (du != 0.0f) {
+    const float s = std::copysign(hu, du);
+    enterU = (cu - s) / du;
+    exitU = (cu + s) / du;
+  } else if (!(std::abs(cu) <= hu)) {
+    return {};
+  }
+  if (dv != 0.0f) {
+    const float s = std::copysign(hv, dv);
+    enterV = (cv - s) / dv;
+    exitV = (cv + s) / dv;
+  } else if (!(std::abs(cv) <= hv)) {
+    return {};
+  }
+  // The later entry; the face entered is the one the ray approaches (its normal against d).
+  const bool throughU = enterU >= enterV;
+  const float t = throughU ? enterU : enterV;
+  if (!(t >= 0.0f && t <= exitU && t <= exitV && t <= in.maxFraction)) return {};
+  const Vec2 axis = throughU ? u : v;
+  const float along = throughU ? du : dv;
+  return hitAt(along > 0.0f ? -axis : axis, mulAdd(in.origin, t, in.translation), t);
+}
+
 // A polygon cast on its own (the commonest solid after circles and boxes), without the other
 // shapes' code around it: in the shared function below the register spills of every other case
 // cost an oriented box's cast a tenth of its time.
 [[gnu::noinline]] CastOutput rayCastPolygonWorld(const Polygon& p, const Transform& xf,
                                                  const RayCastInput& in) {
+  if (p.boxHalfExtents.x > 0.0f && p.radius == 0.0f) return rayCastOrientedBoxWorld(p, xf, in);
   return castInShapeFrame(xf, in, [&](const RayCastInput& local) { return castPolygon(p, local); });
 }
 
@@ -318,6 +370,12 @@ CastOutput rayCastLocal(const Shape& s, const Transform& xf, const RayCastInput&
 }  // namespace
 
 CastOutput rayCast(const Shape& s, const Transform& xf, const RayCastInput& in) {
+  // A sharp polygon's clipping squares nothing and divides only by an edge's own approach, so it
+  // needs no guard: an offset that overflows makes every edge's numerator infinite or NaN, which
+  // no comparison lets in, and the cast misses as the careful path below would decide. Taken
+  // first, polygons (oriented boxes above all) skip the guard's cost.
+  if (s.type == ShapeType::polygon && s.polygon.radius == 0.0f)
+    return rayCastPolygonWorld(s.polygon, xf, in);
   // One test lets ordinary input through: the offset's components and the translation's
   // squared length summed are finite (anything infinite or NaN, or a sum that overflows, takes
   // the careful path below, which decides exactly as if there were no shortcut).

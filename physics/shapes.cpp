@@ -227,6 +227,7 @@ Polygon makeOrientedBox(float halfWidth, float halfHeight, Vec2 center, float an
   poly.normals[1] = ax;
   poly.normals[2] = ay;
   poly.normals[3] = -ax;
+  poly.boxHalfExtents = {halfWidth, halfHeight};
   return poly;
 }
 

@@ -63,6 +63,10 @@ struct Polygon {
   Vec2 centroid{};
   float radius = 0.0f;
   int count = 0;
+  // Set by makeOrientedBox only: the half extents along normals[1] and normals[2] (the box's own
+  // x and y axes) about the centroid, which lets a ray cross the box as two slabs. Zero for every
+  // other polygon, which then takes the general edge-by-edge paths.
+  Vec2 boxHalfExtents{};
 };
 
 // One link of a chain: segment from point1 to point2, with ghost1 the point before point1 and

@@ -268,6 +268,7 @@ TEST(RayCastZeroLength, HitsOnlyWhatContainsTheOrigin) {
       rc::makeBox(1.0f, 0.5f),
       rc::makePolygon(tri),
       rc::makePolygon(tri, 0.25f),
+      rc::makeOrientedBox(1.0f, 0.5f, {}, 0.3f),
       rc::makeCapsule({-1.0f, 0.0f}, {1.0f, 0.0f}, 0.5f),
   };
   for (const Shape& s : solids) {
@@ -298,6 +299,7 @@ TEST(RayCastMaxFraction, LimitsTheRay) {
       rc::makeBox(1.0f, 1.0f),
       rc::makePolygon(tri),
       rc::makePolygon(tri, 0.25f),
+      rc::makeOrientedBox(1.0f, 1.0f, {}, 0.5f * kPi),
       rc::makeCapsule({0.0f, -1.0f}, {0.0f, 1.0f}, 1.0f),
       rc::makeSegment({-1.0f, -2.0f}, {-1.0f, 2.0f}),
   };
@@ -518,6 +520,125 @@ TEST(RayCastGrazing, BoxEdgesAndCorners) {
       double expected = (box.box.center.x - hx - oLocal.x) / dLocal.x;
       EXPECT_NEAR(out.fraction, expected, 1e-5) << "case " << i;
       EXPECT_VEC_NEAR(out.normal, rc::rotate(xf.q, {-1.0f, 0.0f}), 1e-5f);
+    }
+  }
+}
+
+// An oriented box is cast as two slabs on its own axes (raycast.cpp); the same rectangle with
+// its box extents cleared takes the general edge-by-edge clipping. Both are held to the exact
+// cast in double precision: the same decision unless the ray's reach comes within 1e-5 m of the
+// boundary without crossing it or crosses it by less (depth below, in the box's edge distances),
+// a hit point within 1e-5 m of the boundary and near the exact entry, and the same face from
+// both paths away from the corners.
+TEST(RayCastOrientedBox, SlabsAndEdgeClippingAgreeWithTheExactCast) {
+  rc::Random rng(2004);
+  int hits = 0, inside = 0, misses = 0, shallow = 0;
+  for (int i = 0; i < 100000; ++i) {
+    float hx = rng.uniform(0.02f, 3.0f), hy = rng.uniform(0.02f, 3.0f);
+    rc::Polygon box = rc::makeOrientedBox(hx, hy, rng.inBox({-1.0f, -1.0f}, {1.0f, 1.0f}),
+                                          rng.uniform(-3.2f, 3.2f));
+    rc::Polygon edges = box;
+    edges.boxHalfExtents = {};
+    Transform xf{rng.inBox({-20.0f, -20.0f}, {20.0f, 20.0f}),
+                 Rot::fromAngle(rng.uniform(-3.2f, 3.2f))};
+    if (i % 4 == 0) xf.q = Rot{};  // axis-aligned in the world: parallel rays happen
+    Vec2 o = xf.p + rng.inBox({-6.0f, -6.0f}, {6.0f, 6.0f});
+    Vec2 target = xf.p + rng.inBox({-3.0f, -3.0f}, {3.0f, 3.0f});
+    Vec2 d = rng.uniform(0.2f, 3.0f) * (target - o);
+    if (i % 9 == 0) (rng.uniform() < 0.5f ? d.x : d.y) = 0.0f;
+    float maxFraction = rng.uniform() < 0.8f ? 1.0f : rng.uniform(0.0f, 2.0f);
+    RayCastInput in{o, d, maxFraction};
+    CastOutput slab = rc::rayCast(Shape(box), xf, in);
+    CastOutput clip = rc::rayCast(Shape(edges), xf, in);
+
+    // The exact box: its corners placed in double. depth(t) is the least inward distance of
+    // the ray's point from the four edge lines (negative outside), concave in t.
+    const std::vector<DVec> v = worldVertices(box, xf);
+    const DVec od = toD(o), dd = toD(d);
+    auto depth = [&](double t) {
+      double px = od.x + t * dd.x, py = od.y + t * dd.y, least = 1e300;
+      for (size_t k = 0; k < 4; ++k) {
+        DVec a = v[k], b = v[(k + 1) % 4];
+        double ex = b.x - a.x, ey = b.y - a.y;
+        least = std::min(least, (ex * (py - a.y) - ey * (px - a.x)) / std::hypot(ex, ey));
+      }
+      return least;
+    };
+    double lo = 0.0, hi = maxFraction;  // golden-section search for the deepest point
+    for (int k = 0; k < 200 && hi - lo > 1e-15; ++k) {
+      double m1 = lo + 0.382 * (hi - lo), m2 = hi - 0.382 * (hi - lo);
+      (depth(m1) < depth(m2) ? lo : hi) = depth(m1) < depth(m2) ? m1 : m2;
+    }
+    const double deepest = std::max({depth(0.0), depth(maxFraction), depth(0.5 * (lo + hi))});
+    const bool startsInside = depth(0.0) >= 0.0;
+    Exact ref = startsInside ? Exact{true, 0.0} : exactPolygon(v, od, dd, maxFraction);
+    const std::string what = "case " + std::to_string(i);
+    if (std::fabs(deepest) < 1e-5) {
+      ++shallow;  // either decision is right
+    } else {
+      ASSERT_EQ(slab.hit, ref.hit) << what << " (slabs), deepest " << deepest;
+      ASSERT_EQ(clip.hit, ref.hit) << what << " (edges), deepest " << deepest;
+    }
+    if (!ref.hit) ++misses;
+    if (!ref.hit || !slab.hit || !clip.hit) continue;
+    ++hits;
+    if (startsInside) ++inside;
+    const double len = std::hypot(dd.x, dd.y);
+    for (const CastOutput* out : {&slab, &clip}) {
+      if (startsInside && depth(0.0) > 1e-5) {
+        ASSERT_EQ(out->fraction, 0.0f) << what;
+        continue;
+      }
+      ASSERT_LT(std::fabs(depth(out->fraction)), 1e-5) << what;
+      ASSERT_NEAR(out->fraction * len, ref.t * len, 1e-3) << what;
+    }
+    // The same face, unless the entry is within 1e-4 m of a corner.
+    double nearCorner = 1e300;
+    for (const DVec& c : v)
+      nearCorner =
+          std::min(nearCorner, std::hypot(od.x + ref.t * dd.x - c.x, od.y + ref.t * dd.y - c.y));
+    if (nearCorner > 1e-4) {
+      SCOPED_TRACE(what);
+      EXPECT_VEC_NEAR(slab.normal, clip.normal, 1e-6f);
+    }
+  }
+  EXPECT_GT(hits, 40000);
+  EXPECT_GT(inside, 5000);
+  EXPECT_GT(misses, 20000);
+  EXPECT_LT(shallow, 100);
+  std::printf("oriented box: %d hits (%d from inside), %d misses, %d within 1e-5 m\n", hits, inside,
+              misses, shallow);
+}
+
+// Rays along an oriented box's edges, just outside (miss) or inside (a hit through the side
+// they meet first), at any angle and far from the world origin too.
+TEST(RayCastOrientedBox, GrazingAlongTheEdges) {
+  rc::Random rng(2005);
+  for (int i = 0; i < 4000; ++i) {
+    float hx = rng.uniform(0.1f, 2.0f), hy = rng.uniform(0.1f, 2.0f);
+    float angle = rng.uniform(-3.2f, 3.2f);
+    Shape box = rc::makeOrientedBox(hx, hy, {}, angle);
+    Vec2 at = i % 2 ? Vec2{1e4f, -1e4f} : Vec2{};
+    Transform xf{at + rng.inBox({-5.0f, -5.0f}, {5.0f, 5.0f}),
+                 Rot::fromAngle(rng.uniform(-3.2f, 3.2f))};
+    // In the box's own axes: the line y = +-(hy + delta), from the left along +x.
+    // 1e-5 m near the origin; 1e-2 m at 1e4 m, where positions are known to 5e-4 m in float.
+    float gap = i % 2 ? 1e-2f : 1e-5f;
+    float delta = rng.uniform() < 0.5f ? gap : -gap;
+    float side = rng.uniform() < 0.5f ? 1.0f : -1.0f;
+    Vec2 oBox{-hx - rng.uniform(0.1f, 2.0f), side * (hy + delta)};
+    Vec2 dBox{2.0f * hx + 4.0f, 0.0f};
+    Rot boxAxes = Rot::fromAngle(angle);
+    Vec2 o = rc::apply(xf, rc::rotate(boxAxes, oBox));
+    Vec2 d = rc::rotate(xf.q, rc::rotate(boxAxes, dBox));
+    CastOutput out = cast(box, o, d, 1.0f, xf);
+    if (delta > 0.0f) {
+      EXPECT_FALSE(out.hit) << "case " << i;
+    } else {
+      ASSERT_TRUE(out.hit) << "case " << i;
+      double expected = (-hx - oBox.x) / dBox.x;
+      EXPECT_NEAR(out.fraction * dBox.x, expected * dBox.x, i % 2 ? 4e-3 : 1e-5) << "case " << i;
+      EXPECT_VEC_NEAR(out.normal, rc::rotate(xf.q, rc::rotate(boxAxes, {-1.0f, 0.0f})), 1e-5f);
     }
   }
 }
@@ -952,6 +1073,7 @@ std::vector<Shape> everyShapeType() {
           rc::makeBox(1.0f, 1.0f),
           rc::makePolygon(tri),
           rc::makePolygon(tri, 0.25f),
+          rc::makeOrientedBox(1.0f, 0.75f, {}, 0.3f),
           rc::makeCapsule({-1.0f, 0.0f}, {1.0f, 0.0f}, 0.5f),
           rc::makeSegment({-2.0f, 0.5f}, {2.0f, 0.5f}),
           rc::makeChain(wall, false, false)[0]};

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <string>
+#include <utility>
 
 #include "physics/collide.h"
 #include "physics/toi.h"
@@ -571,30 +573,30 @@ void World::setTransform(BodyId id, Vec2 position, float angle) {
 
 void World::applyForce(BodyId id, Vec2 force, Vec2 worldPoint) {
   Body& b = body(id);
-  wakeBody(b);
   requireFinite("applyForce", "force", force);
   requireFinite("applyForce", "point", worldPoint);
+  wakeBody(b);
   if (b.type != BodyType::dynamicBody) return;
   b.force += force;
   b.torque += cross(worldPoint - center(b), force);
 }
 void World::applyForceToCenter(BodyId id, Vec2 force) {
   Body& b = body(id);
-  wakeBody(b);
   requireFinite("applyForceToCenter", "force", force);
+  wakeBody(b);
   if (b.type == BodyType::dynamicBody) b.force += force;
 }
 void World::applyTorque(BodyId id, float torque) {
   Body& b = body(id);
-  wakeBody(b);
   requireFinite("applyTorque", "torque", torque);
+  wakeBody(b);
   if (b.type == BodyType::dynamicBody) b.torque += torque;
 }
 void World::applyLinearImpulse(BodyId id, Vec2 impulse, Vec2 worldPoint) {
   Body& b = body(id);
-  wakeBody(b);
   requireFinite("applyLinearImpulse", "impulse", impulse);
   requireFinite("applyLinearImpulse", "point", worldPoint);
+  wakeBody(b);
   if (b.type != BodyType::dynamicBody) return;
   const auto i = 3 * static_cast<std::size_t>(b.slot);
   v_[i] += b.invMass * impulse.x;
@@ -603,8 +605,8 @@ void World::applyLinearImpulse(BodyId id, Vec2 impulse, Vec2 worldPoint) {
 }
 void World::applyAngularImpulse(BodyId id, float impulse) {
   Body& b = body(id);
-  wakeBody(b);
   requireFinite("applyAngularImpulse", "impulse", impulse);
+  wakeBody(b);
   if (b.type == BodyType::dynamicBody)
     v_[3 * static_cast<std::size_t>(b.slot) + 2] += b.invInertia * impulse;
 }
@@ -1348,6 +1350,21 @@ std::vector<ShapeId> World::overlapAABB(const AABB& box, ProxyFilter filter) con
   return out;
 }
 
+std::optional<WorldHit> World::castRay(Vec2 origin, Vec2 translation, ProxyFilter filter,
+                                       Wake wake) {
+  std::optional<WorldHit> hit = std::as_const(*this).castRay(origin, translation, filter);
+  if (hit && wake == Wake::yes) wakeBody(body(hit->body));
+  return hit;
+}
+
+std::vector<ShapeId> World::overlapAABB(const AABB& box, ProxyFilter filter, Wake wake) {
+  std::vector<ShapeId> found = std::as_const(*this).overlapAABB(box, filter);
+  if (wake == Wake::yes)
+    for (ShapeId shape : found)
+      wakeBody(body(bodyOf(shape)));
+  return found;
+}
+
 std::vector<ShapeId> World::overlapPoint(Vec2 point, ProxyFilter filter) const {
   requireFinite("overlapPoint", "point", point);
   std::vector<ShapeId> out;
@@ -1359,6 +1376,36 @@ std::vector<ShapeId> World::overlapPoint(Vec2 point, ProxyFilter filter) const {
   }
   std::sort(out.begin(), out.end(), [](ShapeId a, ShapeId b) { return a.index < b.index; });
   return out;
+}
+
+StepAccumulator::StepAccumulator(float dt, int maxSteps) : dt_(dt), maxSteps_(maxSteps) {
+  if (!(std::isfinite(dt) && dt > 0.0f))
+    throw InvalidDefinition("StepAccumulator: dt must be finite and positive, got " +
+                            std::to_string(dt));
+  if (maxSteps < 1)
+    throw InvalidDefinition("StepAccumulator: maxSteps must be at least 1, got " +
+                            std::to_string(maxSteps));
+}
+
+int StepAccumulator::advance(World& world, double elapsedSeconds) {
+  if (!(std::isfinite(elapsedSeconds) && elapsedSeconds >= 0.0))
+    throw InvalidDefinition("StepAccumulator: elapsed time must be finite and not negative, got " +
+                            std::to_string(elapsedSeconds));
+  banked_ += elapsedSeconds;
+  int taken = 0;
+  while (banked_ >= dt_ && taken < maxSteps_) {
+    world.step(dt_);
+    banked_ -= dt_;
+    ++taken;
+  }
+  steps_ += taken;
+  if (banked_ >= dt_) {
+    // Over the cap: keep the part of a step already banked, drop the whole steps.
+    const double keep = std::fmod(banked_, static_cast<double>(dt_));
+    dropped_ += banked_ - keep;
+    banked_ = keep;
+  }
+  return taken;
 }
 
 }  // namespace rc

@@ -252,6 +252,13 @@ class World {
   void applyLinearImpulse(BodyId id, Vec2 impulse, Vec2 worldPoint);
   void applyAngularImpulse(BodyId id, float impulse);
 
+  // The same queries for a caller that wants what they find disturbed (a blast that wakes the
+  // crates in its area, a ray that should rouse what it touches): with Wake::yes every
+  // sleeping body they report is woken, with its island.
+  enum class Wake : std::uint8_t { no, yes };
+  std::optional<WorldHit> castRay(Vec2 origin, Vec2 translation, ProxyFilter filter, Wake wake);
+  std::vector<ShapeId> overlapAABB(const AABB& box, ProxyFilter filter, Wake wake);
+
   // Queries. Rays and casts go along origin + t * translation, t in [0, 1]; the closest hit
   // (ties to the lower shape id) or every hit sorted by fraction, then shape id. Sensors are
   // skipped. A ray starting inside a solid shape hits it at fraction 0 (see raycast.h).
@@ -441,6 +448,31 @@ class World {
   Profile profile_;
   double time_ = 0;
   int bodyCount_ = 0;
+};
+
+// Runs a world at a fixed step from wall-clock time ("fix your timestep"): the elapsed time of
+// each frame is banked and spent in whole steps of exactly dt, so the simulation (and its
+// hashes) depend only on how many steps were taken, never on the frame rate. At most maxSteps
+// are taken per call, so a frame that took too long cannot make the next one take longer still;
+// the time over that is dropped (and counted). alpha() is the banked part of a step, for
+// drawing bodies between their last two states.
+class StepAccumulator {
+ public:
+  // dt finite and positive, maxSteps at least 1; otherwise InvalidDefinition.
+  explicit StepAccumulator(float dt = 1.0f / 60.0f, int maxSteps = 8);
+  // Banks elapsed seconds (finite, not negative) and steps the world for every whole step in
+  // the bank, up to maxSteps. Returns the number of steps taken.
+  int advance(World& world, double elapsedSeconds);
+  float dt() const { return dt_; }
+  double alpha() const { return banked_ / dt_; }      // in [0, 1) after advance()
+  double droppedSeconds() const { return dropped_; }  // discarded by the step cap, in total
+  long long steps() const { return steps_; }          // taken, in total
+
+ private:
+  float dt_;
+  int maxSteps_;
+  double banked_ = 0.0, dropped_ = 0.0;
+  long long steps_ = 0;
 };
 
 }  // namespace rc

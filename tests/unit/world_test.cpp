@@ -598,6 +598,186 @@ TEST(World, PyramidStaysUp) {
   EXPECT_LT(rc::length(w.linearVelocity(top)), 0.01f);
 }
 
+// What wakes a sleeping island besides a contact: a force or torque (also on the next step),
+// a query that asks (Wake::yes), and not a query that does not, nor a force rejected as NaN.
+TEST(World, ForcesAndAskingQueriesWakeSleepers) {
+  auto settledRow = [](rc::World& w, std::vector<BodyId>& row) {
+    ground(w);
+    for (int i = 0; i < 4; ++i) {
+      BodyId b = w.createBody(dynamicAt({3.0f * static_cast<float>(i), 0.5f}));
+      w.createShape(b, rc::makeBox(0.5f, 0.5f));
+      row.push_back(b);
+    }
+    for (int i = 0; i < 60; ++i)
+      w.step(1.0f / 60.0f);
+    ASSERT_EQ(w.awakeBodyCount(), 0);
+  };
+  rc::World w;
+  std::vector<BodyId> row;
+  settledRow(w, row);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_THROW(w.applyForceToCenter(row[0], {nan, 0}), rc::InvalidDefinition);
+  EXPECT_THROW(w.applyTorque(row[0], nan), rc::InvalidDefinition);
+  EXPECT_EQ(w.awakeBodyCount(), 0);  // a rejected call changes nothing
+  // A force wakes the body it pushes, and it moves in the next step.
+  w.applyForceToCenter(row[0], {200, 0});
+  EXPECT_TRUE(w.isAwake(row[0]));
+  EXPECT_EQ(w.awakeBodyCount(), 1);
+  const float x0 = w.position(row[0]).x;
+  w.step(1.0f / 60.0f);
+  EXPECT_GT(w.position(row[0]).x, x0);
+  w.applyTorque(row[1], 5.0f);
+  EXPECT_TRUE(w.isAwake(row[1]));
+  // Queries: the plain ones leave sleepers asleep, the asking ones wake what they report only.
+  const rc::AABB around2{{5.5f, 0.2f}, {6.5f, 0.8f}};  // box 2 spans x 5.5..6.5
+  EXPECT_EQ(w.overlapAABB(around2).size(), 1u);        // box 2 (the ground's top is y = 0)
+  EXPECT_FALSE(w.isAwake(row[2]));
+  EXPECT_EQ(w.overlapAABB(around2, {}, rc::World::Wake::yes).size(), 1u);
+  EXPECT_TRUE(w.isAwake(row[2]));
+  EXPECT_FALSE(w.isAwake(row[3]));
+  ASSERT_TRUE(w.castRay({9, 5}, {0, -10}).has_value());
+  EXPECT_FALSE(w.isAwake(row[3]));
+  const auto hit = w.castRay({9, 5}, {0, -10}, {}, rc::World::Wake::yes);
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_EQ(hit->body, row[3]);
+  EXPECT_TRUE(w.isAwake(row[3]));
+}
+
+// The accumulator turns wall-clock frames into fixed steps: frames of any length add up to the
+// same steps and so the same state as stepping by hand; alpha is what is banked.
+TEST(StepAccumulator, IrregularFramesGiveTheFixedStepState) {
+  auto scene = [](rc::World& w) {
+    ground(w);
+    BodyId b = w.createBody(dynamicAt({0.3f, 4.0f}, 0.4f));
+    w.createShape(b, rc::makeBox(0.5f, 0.25f));
+    BodyId c = w.createBody(dynamicAt({0.0f, 2.0f}));
+    w.createShape(c, rc::makeCircle({}, 0.4f));
+    return b;
+  };
+  const float dt = 1.0f / 60.0f;
+  rc::World byHand, byClock;
+  scene(byHand);
+  scene(byClock);
+  rc::StepAccumulator acc(dt);
+  rc::Random rng(77);
+  double clock = 0.0;
+  int frames = 0;
+  while (acc.steps() < 150) {
+    const double frame = rng.uniform(0.0f, 0.05f);  // 0 to 50 ms, mostly several steps' worth
+    clock += frame;
+    const int taken = acc.advance(byClock, frame);
+    EXPECT_LE(taken, 8);
+    ++frames;
+    EXPECT_GE(acc.alpha(), 0.0);
+    EXPECT_LT(acc.alpha(), 1.0);
+  }
+  for (long long i = 0; i < acc.steps(); ++i)
+    byHand.step(dt);
+  EXPECT_EQ(byClock.stateHash(), byHand.stateHash());
+  EXPECT_EQ(acc.droppedSeconds(), 0.0);
+  // Time is conserved: what was stepped plus what is banked is what elapsed.
+  EXPECT_NEAR(static_cast<double>(acc.steps()) * dt + acc.alpha() * dt, clock, 1e-9);
+  EXPECT_GT(frames, 100);
+}
+
+// A frame of one second with the cap at 8 steps takes 8 and drops the rest, keeping the part
+// of a step that was banked; the next frame goes on normally.
+TEST(StepAccumulator, ALongFrameIsCapped) {
+  const float dt = 1.0f / 60.0f;
+  rc::World w;
+  ground(w);
+  rc::StepAccumulator acc(dt, 8);
+  EXPECT_EQ(acc.advance(w, 0.5 * dt), 0);
+  EXPECT_NEAR(acc.alpha(), 0.5, 1e-9);
+  EXPECT_EQ(acc.advance(w, 1.0), 8);
+  EXPECT_EQ(acc.steps(), 8);
+  // 1.5 / dt - 8 = 52.0 whole steps over the cap dropped, half a step kept... as banked.
+  const double elapsed = 0.5 * dt + 1.0;
+  const double whole = std::floor(elapsed / dt);
+  EXPECT_NEAR(acc.droppedSeconds(), (whole - 8.0) * dt, 1e-9);
+  EXPECT_NEAR(acc.alpha(), elapsed / dt - whole, 1e-6);
+  EXPECT_EQ(acc.advance(w, dt), 1);
+}
+
+TEST(StepAccumulator, RejectsBadInput) {
+  rc::World w;
+  EXPECT_THROW(rc::StepAccumulator(0.0f), rc::InvalidDefinition);
+  EXPECT_THROW(rc::StepAccumulator(-1.0f / 60.0f), rc::InvalidDefinition);
+  EXPECT_THROW(rc::StepAccumulator(std::numeric_limits<float>::infinity()), rc::InvalidDefinition);
+  EXPECT_THROW(rc::StepAccumulator(1.0f / 60.0f, 0), rc::InvalidDefinition);
+  rc::StepAccumulator acc;
+  EXPECT_THROW(acc.advance(w, -0.01), rc::InvalidDefinition);
+  EXPECT_THROW(acc.advance(w, std::numeric_limits<double>::quiet_NaN()), rc::InvalidDefinition);
+  EXPECT_THROW(acc.advance(w, std::numeric_limits<double>::infinity()), rc::InvalidDefinition);
+  EXPECT_EQ(acc.steps(), 0);
+  EXPECT_EQ(acc.alpha(), 0.0);
+}
+
+// A 20 m box resting on two 1 m boxes: a mass ratio of 400 across every contact. It holds: the
+// small boxes neither squirt out nor tip, the big one stays level and, within 30 s, everything
+// comes to rest (with velocity Verlet and RK4 the load rings on the soft contacts for about
+// 15 s, +-2 cm at 0.15 m/s, before it settles; semi-implicit Euler settles sooner).
+// What it does not do is rest on the surfaces: a soft contact (WorldDef::contactHertz) is a
+// spring whose stiffness is relative to the contact's own effective mass m_eff, so it settles
+// where the load it carries, over m_eff, equals omega^2 times the overlap. For a 1 m box under
+// half of a 400 times heavier one that is (M/2 + m) g / m / omega^2 = 5.7 cm at 30 Hz, at the
+// ground and again at the big box (0.28 mm for a box under its own weight). The test holds the
+// overlaps to that law within 10%, so a solver that sank further, or one that stiffened the
+// contact, would show here; resting on the surfaces would need rigid position correction under
+// heavy loads (Box2D 2.4.1's approach), not done.
+TEST(World, HeavyBoxOnTwoLightBoxesHolds) {
+  for (rc::Integrator integrator :
+       {rc::Integrator::semiImplicitEuler, rc::Integrator::velocityVerlet, rc::Integrator::rk4}) {
+    rc::WorldDef def;
+    def.integrator = integrator;
+    rc::World w(def);
+    ground(w);
+    const float xs[] = {-8.0f, 8.0f};
+    std::vector<BodyId> small;
+    for (float x : xs) {
+      small.push_back(w.createBody(dynamicAt({x, 0.5f})));
+      w.createShape(small.back(), rc::makeBox(0.5f, 0.5f));
+    }
+    BodyId big = w.createBody(dynamicAt({0.0f, 11.0f}));
+    w.createShape(big, rc::makeBox(10.0f, 10.0f));
+    const float m = w.mass(small[0]), bigMass = w.mass(big);
+    ASSERT_NEAR(bigMass / m, 400.0f, 1e-3f);
+    const float omega = 2.0f * rc::kPi * def.contactHertz;
+    const float soft = (0.5f * bigMass + m) * 10.0f / m / (omega * omega);
+    float deepest = 0.0f, farthest = 0.0f;
+    for (int i = 0; i < 1800; ++i) {
+      w.step(1.0f / 60.0f);
+      for (BodyId b : {big, small[0], small[1]})
+        ASSERT_TRUE(std::isfinite(w.position(b).x) && std::isfinite(w.position(b).y));
+      deepest = std::max(deepest, 1.0f - (w.position(big).y - 10.0f));
+      for (int k = 0; k < 2; ++k)
+        farthest = std::max(farthest, std::fabs(w.position(small[k]).x - xs[k]));
+    }
+    const float groundOverlap = 0.5f - 0.5f * (w.position(small[0]).y + w.position(small[1]).y);
+    const float boxOverlap = w.position(small[0]).y + 0.5f - (w.position(big).y - 10.0f);
+    const std::string what(rc::integratorName(integrator));
+    std::printf(
+        "%s: at rest overlaps %.4f m at the ground, %.4f m under the big box "
+        "(soft-contact law %.4f m), big box angle %.2g; on the way the big box sank "
+        "%.4f m at most, small boxes strayed %.4f m at most\n",
+        what.c_str(), groundOverlap, boxOverlap, soft, w.angle(big), deepest, farthest);
+    // On the way: never more than twice the law's sinking (both contacts, with overshoot), the
+    // small boxes not pushed aside.
+    EXPECT_LT(deepest, 2.0f * 2.0f * soft) << what;
+    EXPECT_LT(farthest, 0.02f) << what;
+    EXPECT_NEAR(groundOverlap, soft, 0.1f * soft) << what;
+    EXPECT_NEAR(boxOverlap, soft, 0.1f * soft) << what;
+    EXPECT_NEAR(w.position(big).x, 0.0f, 0.01f) << what;
+    EXPECT_LT(std::fabs(w.angle(big)), 1e-3f) << what;
+    EXPECT_LT(rc::length(w.linearVelocity(big)), 1e-3f) << what;
+    for (int k = 0; k < 2; ++k) {
+      EXPECT_NEAR(w.position(small[k]).x, xs[k], 0.01f) << what;
+      EXPECT_LT(std::fabs(w.angle(small[k])), 3e-3f) << what;
+      EXPECT_LT(rc::length(w.linearVelocity(small[k])), 1e-3f) << what;
+    }
+  }
+}
+
 TEST(World, QueriesFindWhatTheyShould) {
   rc::World w;
   BodyId g = ground(w);  // top face at y = 0

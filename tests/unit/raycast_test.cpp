@@ -566,8 +566,11 @@ TEST(RayCastOrientedBox, SlabsAndEdgeClippingAgreeWithTheExactCast) {
     };
     double lo = 0.0, hi = maxFraction;  // golden-section search for the deepest point
     for (int k = 0; k < 200 && hi - lo > 1e-15; ++k) {
-      double m1 = lo + 0.382 * (hi - lo), m2 = hi - 0.382 * (hi - lo);
-      (depth(m1) < depth(m2) ? lo : hi) = depth(m1) < depth(m2) ? m1 : m2;
+      const double m1 = lo + 0.382 * (hi - lo), m2 = hi - 0.382 * (hi - lo);
+      if (depth(m1) < depth(m2))
+        lo = m1;  // the deepest point is beyond m1
+      else
+        hi = m2;
     }
     const double deepest = std::max({depth(0.0), depth(maxFraction), depth(0.5 * (lo + hi))});
     const bool startsInside = depth(0.0) >= 0.0;

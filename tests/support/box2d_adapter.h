@@ -1,8 +1,14 @@
 // Our shapes and transforms as Box2D 2.4.1 objects, for the oracle tests and the benchmarks.
 //
 // Skin: Box2D 2.4.1 gives every polygon and edge a radius of b2_polygonRadius (0.01 m). The
-// adapter sets m_radius = 0 on polygons and edges after building them, so both engines describe
-// the same sharp shapes and do the same work.
+// adapter sets m_radius = 0 on sharp polygons and edges after building them, so both engines
+// describe the same sharp shapes and do the same work. A rounded polygon becomes a
+// b2PolygonShape with m_radius = our radius: Box2D's distance, overlap and manifold routines
+// round polygons by m_radius (its manifolds by face normals only, see manifold_oracle_test.cpp),
+// but its RayCast and ComputeMass ignore it.
+//
+// A chain link becomes the b2EdgeShape that b2ChainShape::GetChildEdge makes: one-sided with its
+// ghost vertices (SetOneSided(ghost1, point1, point2, ghost2)), or two-sided without them.
 #pragma once
 
 #include <box2d/b2_distance.h>
@@ -40,7 +46,8 @@ struct Box2DShape {
   }
 };
 
-// Returns false for shapes Box2D 2.4.1 has no type for (capsules, chain links).
+// Returns false for shapes Box2D 2.4.1 has no type for (capsules), and for a polygon whose hull
+// Box2D builds with a different vertex count (nearly collinear points).
 inline bool toB2(const Shape& s, Box2DShape* o) {
   switch (s.type) {
     case ShapeType::circle:
@@ -55,14 +62,13 @@ inline bool toB2(const Shape& s, Box2DShape* o) {
       o->polygon.m_radius = 0.0f;
       return true;
     case ShapeType::polygon: {
-      if (s.polygon.radius != 0.0f) return false;
       o->type = b2Shape::e_polygon;
       b2Vec2 v[b2_maxPolygonVertices];
       for (int i = 0; i < s.polygon.count; ++i)
         v[i].Set(s.polygon.vertices[i].x, s.polygon.vertices[i].y);
       o->polygon.Set(v, s.polygon.count);
-      o->polygon.m_radius = 0.0f;
-      return true;
+      o->polygon.m_radius = s.polygon.radius;
+      return o->polygon.m_count == s.polygon.count;  // Box2D's hull agreed with ours
     }
     case ShapeType::segment:
       o->type = b2Shape::e_edge;
@@ -70,6 +76,17 @@ inline bool toB2(const Shape& s, Box2DShape* o) {
                           {s.segment.point2.x, s.segment.point2.y});
       o->edge.m_radius = 0.0f;
       return true;
+    case ShapeType::chainSegment: {
+      const ChainSegment& c = s.chainSegment;
+      auto v = [](Vec2 p) { return b2Vec2(p.x, p.y); };
+      o->type = b2Shape::e_edge;
+      if (c.oneSided)
+        o->edge.SetOneSided(v(c.ghost1), v(c.segment.point1), v(c.segment.point2), v(c.ghost2));
+      else
+        o->edge.SetTwoSided(v(c.segment.point1), v(c.segment.point2));
+      o->edge.m_radius = 0.0f;
+      return true;
+    }
     default:
       return false;
   }

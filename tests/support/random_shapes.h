@@ -1,6 +1,9 @@
 // Seeded random shapes and transforms shared by the property, brute-force and oracle tests.
 #pragma once
 
+#include <cmath>
+#include <cstdint>
+#include <span>
 #include <vector>
 
 #include "physics/random.h"
@@ -8,7 +11,7 @@
 
 namespace rc::testing {
 
-enum class Kind { circle, box, polygon, roundedPolygon, orientedBox, capsule, segment };
+enum class Kind { circle, box, polygon, roundedPolygon, orientedBox, capsule, segment, chainLink };
 inline const char* kindName(Kind k) {
   switch (k) {
     case Kind::circle:
@@ -25,8 +28,35 @@ inline const char* kindName(Kind k) {
       return "capsule";
     case Kind::segment:
       return "segment";
+    case Kind::chainLink:
+      return "chain link";
   }
   return "?";
+}
+
+// One link of a random chain, as rc::makeChain builds them: a link 0.2 to 2.5 m long about the
+// origin, and neighbours 0.2 to 2 m long turned up to 1 rad either way at each joint (convex
+// and concave corners), exactly straight one time in eight, and one time in eight an open end
+// (the ghost is the endpoint itself). One-sided links collide with shapes on their right.
+inline ChainSegment randomChainLink(Random& rng, bool oneSided) {
+  Vec2 p1 = rng.inBox({-1.0f, -1.0f}, {1.0f, 1.0f});
+  float angle = rng.uniform(-3.14f, 3.14f);
+  Vec2 dir{std::cos(angle), std::sin(angle)};
+  Vec2 p2 = p1 + rng.uniform(0.2f, 2.5f) * dir;
+  auto neighbour = [&](Vec2 from, float sign) {
+    std::uint32_t pick = rng.below(8);
+    if (pick == 0) return from;  // open end
+    float turn = pick == 1 ? 0.0f : rng.uniform(-1.0f, 1.0f);
+    Vec2 d{std::cos(angle + turn), std::sin(angle + turn)};
+    return from + sign * rng.uniform(0.2f, 2.0f) * d;
+  };
+  Vec2 ghost1 = neighbour(p1, -1.0f);
+  Vec2 ghost2 = neighbour(p2, 1.0f);
+  Vec2 points[4] = {ghost1, p1, p2, ghost2};
+  bool open1 = ghost1 == p1, open2 = ghost2 == p2;
+  std::span<const Vec2> span(points + (open1 ? 1 : 0), 4 - (open1 ? 1 : 0) - (open2 ? 1 : 0));
+  // The middle link of the polyline: the one from p1 to p2.
+  return makeChain(span, false, oneSided)[open1 ? 0 : 1];
 }
 
 // A shape of the given kind about the origin, sized 0.1 to ~2 m.
@@ -67,6 +97,8 @@ inline Shape randomShape(Random& rng, Kind kind) {
       if (distanceSquared(a, b) < 0.01f) b = a + Vec2{0.5f, 0.2f};
       return makeSegment(a, b);
     }
+    case Kind::chainLink:
+      return randomChainLink(rng, true);
   }
   return makeCircle({}, 1.0f);
 }

@@ -735,7 +735,8 @@ Shape randomSolid(rc::Random& rng, Kind kind) {
       if (rc::distanceSquared(a, b) < 1e-4f) b = a + Vec2{0.3f, 0.1f};
       return rc::makeCapsule(a, b, rng.uniform(0.02f, 0.6f));
     }
-    case Kind::segment:  // not a solid: not in kKinds
+    case Kind::segment:  // not solids: not in kKinds
+    case Kind::chainLink:
       break;
   }
   return rc::makeCircle({}, 1.0f);

@@ -304,6 +304,67 @@ float maxSeparation(const Hull& a, const Hull& b, float enough, int* edge) {
   return bestSep;
 }
 
+// The edge of `inc` most against the normal n: the incident edge.
+[[gnu::always_inline]] inline int incidentEdge(const Hull& inc, Vec2 n) {
+  int best = 0;
+  float minDot = 1e30f;
+  for (int j = 0; j < inc.count; ++j) {
+    float dd = dot(n, inc.n[j]);
+    if (dd < minDot) {
+      minDot = dd;
+      best = j;
+    }
+  }
+  return best;
+}
+
+// Reference face `edge` of `ref` (v1 -> v2, normal n): clips the incident edge of `inc` to the
+// slab between the face's side planes and adds the clipped points within `margin` to m, with
+// the normal from A to B (flip: the reference is B's face). Returns false, adding nothing, when
+// the incident edge lies wholly past an end of the face.
+[[gnu::always_inline]] inline bool clipToFace(const Hull& ref, int edge, const Hull& inc, bool flip,
+                                              float margin, Local& m) {
+  const int i1 = edge, i2 = nextIndex(edge, ref.count);
+  const Vec2 v1 = ref.v(i1), v2 = ref.v(i2), n = ref.n[edge];
+  const int incEdge = incidentEdge(inc, n);
+  Vec2 w[2] = {inc.v(incEdge), inc.v(nextIndex(incEdge, inc.count))};
+  int wid[2] = {incEdge, nextIndex(incEdge, inc.count)};
+
+  Vec2 t = normalize(v2 - v1);
+  float lo = 0.0f, hi = dot(v2 - v1, t);
+  float u0 = dot(w[0] - v1, t), u1 = dot(w[1] - v1, t);
+  Vec2 c[2] = {w[0], w[1]};
+  if ((u0 < lo && u1 < lo) || (u0 > hi && u1 > hi)) return false;
+  if (u0 != u1) {
+    auto at = [&](float u) { return lerp(w[0], w[1], (u - u0) / (u1 - u0)); };
+    if (u0 < lo) c[0] = at(lo);
+    if (u0 > hi) c[0] = at(hi);
+    if (u1 < lo) c[1] = at(lo);
+    if (u1 > hi) c[1] = at(hi);
+  }
+  const float refR = ref.radius, incR = inc.radius, radii = refR + incR;
+  for (int k = 0; k < 2; ++k) {
+    float core = dot(c[k] - v1, n);
+    float s = core - radii;
+    if (s > margin) continue;
+    Vec2 p = mulAdd(c[k], 0.5f * (refR - incR - core), n);
+    std::uint16_t id =
+        static_cast<std::uint16_t>((flip ? 0x8000 : 0) | (i1 << 8) | (wid[k] << 4) | k);
+    m.add(p, s, id);
+  }
+  if (m.count == 2 && distanceSquared(m.point[0], m.point[1]) < 1e-12f) {
+    // A degenerate incident edge (parallel to the normal) clipped to one point.
+    if (m.separation[1] < m.separation[0]) {
+      m.point[0] = m.point[1];
+      m.separation[0] = m.separation[1];
+      m.id[0] = m.id[1];
+    }
+    m.count = 1;
+  }
+  m.normal = flip ? -n : n;
+  return true;
+}
+
 // Both hulls in the same frame; normal from a to b. The manifold is written into m (empty on
 // entry), which the caller reads field by field: returned by value, a Local written in pieces
 // and then copied out whole stalled on store forwarding (a seventh of a segment-box manifold).
@@ -331,7 +392,12 @@ void collideLocal(const Hull& a, const Hull& b, float margin, Local& m) {
   const float sep = flip ? sepB : sepA;
 
   // When the cores are apart, the face separation equals the true distance unless the closest
-  // features are two vertices; GJK tells which. The face normals of both shapes are all the
+  // features are two vertices; GJK tells which (its simplex ends as one point pair). Then the
+  // normal is the direction between those vertices: the face normal would be off by up to the
+  // corner's angle even where its separation is within micrometres of the distance, which for
+  // rounded shapes (overlapping surfaces, apart cores) is a real contact. Below half a
+  // millimetre of core distance the face normal is kept: the corner normal turns fast there and
+  // the separation differs by less than that. The face normals of both shapes are all the
   // separating axes there are (they are the edge normals of the Minkowski difference) unless
   // both are two-point hulls: two parallel segments apart along their common line have a
   // degenerate difference whose end direction is no face normal. Check those always.
@@ -357,70 +423,25 @@ void collideLocal(const Hull& a, const Hull& b, float margin, Local& m) {
   };
   if (sep > 0.1f * kLinearSlop || (a.count == 2 && b.count == 2)) {
     const DistanceOutput& d = coreDistance();
-    if (d.distance > 0.1f * kLinearSlop && d.distance > sep + 0.01f * kLinearSlop)
+    if (d.distance > 0.1f * kLinearSlop &&
+        (d.simplexCount == 1 || d.distance > sep + 0.01f * kLinearSlop))
       return vertexContact();
   }
 
-  // Reference face v1 -> v2 with normal n; incident edge: the one most against n.
-  const int i1 = edge, i2 = nextIndex(edge, ref.count);
-  const Vec2 v1 = ref.v(i1), v2 = ref.v(i2), n = ref.n[edge];
-  int incEdge = 0;
-  float minDot = 1e30f;
-  for (int j = 0; j < inc.count; ++j) {
-    float dd = dot(n, inc.n[j]);
-    if (dd < minDot) {
-      minDot = dd;
-      incEdge = j;
-    }
-  }
-  Vec2 w[2] = {inc.v(incEdge), inc.v(nextIndex(incEdge, inc.count))};
-  int wid[2] = {incEdge, nextIndex(incEdge, inc.count)};
-
-  // Clip the incident edge to the slab between the reference face's side planes.
-  Vec2 t = normalize(v2 - v1);
-  float lo = 0.0f, hi = dot(v2 - v1, t);
-  float u0 = dot(w[0] - v1, t), u1 = dot(w[1] - v1, t);
-  Vec2 c[2] = {w[0], w[1]};
-  if ((u0 < lo && u1 < lo) || (u0 > hi && u1 > hi)) {
-    // The incident edge lies past an end of the reference face: the closest features are that
-    // end's vertex and an incident vertex (a case the GJK threshold above can miss by a hair).
-    if (coreDistance().distance > 0.1f * kLinearSlop) return vertexContact();
-    // Cores overlapping in an odd configuration: keep the deeper incident vertex unclipped.
-    int k = dot(w[0] - v1, n) <= dot(w[1] - v1, n) ? 0 : 1;
-    float core = dot(w[k] - v1, n);
-    m.normal = flip ? -n : n;
-    m.add(mulAdd(w[k], 0.5f * (ref.radius - inc.radius - core), n), core - radii,
-          static_cast<std::uint16_t>((flip ? 0x8000 : 0) | (i1 << 8) | (wid[k] << 4) | k));
-    return;
-  }
-  if (u0 != u1) {
-    auto at = [&](float u) { return lerp(w[0], w[1], (u - u0) / (u1 - u0)); };
-    if (u0 < lo) c[0] = at(lo);
-    if (u0 > hi) c[0] = at(hi);
-    if (u1 < lo) c[1] = at(lo);
-    if (u1 > hi) c[1] = at(hi);
-  }
-  const float refR = ref.radius, incR = inc.radius;
-  for (int k = 0; k < 2; ++k) {
-    float core = dot(c[k] - v1, n);
-    float s = core - radii;
-    if (s > margin) continue;
-    Vec2 p = mulAdd(c[k], 0.5f * (refR - incR - core), n);
-    std::uint16_t id =
-        static_cast<std::uint16_t>((flip ? 0x8000 : 0) | (i1 << 8) | (wid[k] << 4) | k);
-    m.add(p, s, id);
-  }
-  if (m.count == 2 && distanceSquared(m.point[0], m.point[1]) < 1e-12f) {
-    // A degenerate incident edge (parallel to the normal) clipped to one point.
-    if (m.separation[1] < m.separation[0]) {
-      m.point[0] = m.point[1];
-      m.separation[0] = m.separation[1];
-      m.id[0] = m.id[1];
-    }
-    m.count = 1;
-  }
+  if (clipToFace(ref, edge, inc, flip, margin, m)) return;
+  // The incident edge lies past an end of the reference face: the closest features are that
+  // end's vertex and an incident vertex (a case the GJK threshold above can miss by a hair).
+  if (coreDistance().distance > 0.1f * kLinearSlop) return vertexContact();
+  // Cores overlapping in an odd configuration: keep the deeper incident vertex unclipped.
+  const Vec2 v1 = ref.v(edge), n = ref.n[edge];
+  const int j = incidentEdge(inc, n);
+  const int wid[2] = {j, nextIndex(j, inc.count)};
+  const int k = dot(inc.v(wid[0]) - v1, n) <= dot(inc.v(wid[1]) - v1, n) ? 0 : 1;
+  const Vec2 w = inc.v(wid[k]);
+  const float core = dot(w - v1, n);
   m.normal = flip ? -n : n;
-  return;
+  m.add(mulAdd(w, 0.5f * (ref.radius - inc.radius - core), n), core - radii,
+        static_cast<std::uint16_t>((flip ? 0x8000 : 0) | (edge << 8) | (wid[k] << 4) | k));
 }
 
 }  // namespace
@@ -602,22 +623,69 @@ Manifold collideChainSegment(const ChainSegment& a, const Transform& xfA, const 
   Local m;
   collideLocal(ha, hb, margin, m);
   if (m.count == 0) return Manifold{};
+  if (hb.count > 1 && (m.id[0] & 0xC700) == 0x0100) {
+    // The link's back face (reference face 1 of its two-point hull; a point shape's contacts
+    // have ids of their own, and never take the back face of a link they are in front of):
+    // that push would drive the
+    // shape through the link to the side it is not on. The link's front face decides instead.
+    m.count = 0;
+    if (!clipToFace(ha, 0, hb, false, margin, m) || m.count == 0) return Manifold{};
+  }
   Vec2 e = p2 - p1;
   float tangential = dot(m.normal, normalize(e));
   if (std::fabs(tangential) > 1e-4f) {
-    // The normal leans towards a joint: keep it only if the joint is convex and the normal lies
-    // inside the cone of normals between this link's and the neighbour's.
-    bool keep;
-    if (tangential < 0.0f) {
-      Vec2 e0 = p1 - g1;
-      keep = lengthSquared(e0) == 0.0f ||
-             (cross(e0, e) > 0.0f && cross(normalize(rightPerp(e0)), m.normal) >= 0.0f);
-    } else {
-      Vec2 e2 = g2 - p2;
-      keep = lengthSquared(e2) == 0.0f ||
-             (cross(e, e2) > 0.0f && cross(m.normal, normalize(rightPerp(e2))) >= 0.0f);
+    // The normal leans towards a joint. The neighbour beyond it is e0 (into the joint) and e1
+    // (out of it), in the link's direction; its collision-side normal is nN.
+    const bool atStart = tangential < 0.0f;
+    const Vec2 e0 = atStart ? p1 - g1 : e, e1 = atStart ? e : g2 - p2;
+    const Vec2 neighbour = atStart ? e0 : e1;
+    if (lengthSquared(neighbour) == 0.0f) return toWorld(m, xfA, xfB);  // an open end: its cap
+    const Vec2 nN = normalize(rightPerp(neighbour));
+    // At a convex joint the normals fan from this link's to the neighbour's; a flat or concave
+    // joint has only this link's.
+    // (A normal 1e-4 rad past the neighbour's still counts: a face of the shape lying along the
+    // neighbour is common and must not flicker between the two answers.)
+    const bool admissible = cross(e0, e1) > 0.0f && (atStart ? cross(nN, m.normal) >= -1e-4f
+                                                             : cross(m.normal, nN) >= -1e-4f);
+    const Vec2 joint = atStart ? p1 : p2;
+    if (!admissible) {
+      // A normal from closest points (a point contact, two vertices) or from a face of the
+      // shape while the cores are apart (this link's end against that face) points into the
+      // neighbour's region: the neighbour is closer and reports that contact, unless it cannot
+      // see the shape (one-sided, with the shape's centre behind it: the shape has crossed it).
+      const bool bFace = (m.id[0] & 0xC000) == 0x8000;
+      float deepest = m.separation[0];
+      for (int k = 1; k < m.count; ++k)
+        deepest = std::min(deepest, m.separation[k]);
+      const bool neighbourSees = !a.oneSided || dot(hb.centroid - joint, nN) >= 0.0f;
+      if ((!bFace || deepest + hb.radius > 0.0f) && neighbourSees) return Manifold{};
+      // Otherwise (a face of the shape while the cores cross) the normal is clamped to the
+      // nearest ones the joint allows, and the one that separates more is kept. This link's face is
+      // always allowed: at a flat or concave joint it is the only choice (a shape pressed into a
+      // valley is pushed out of both walls, one across a flat joint out of the floor). Past a
+      // convex joint's fan the neighbour's normal is the other, at the joint's vertex (the
+      // neighbour may report the same push: two points pushing one way are harmless, a ghost normal
+      // is not).
+      Local face;
+      const bool haveFace = clipToFace(ha, 0, hb, false, margin, face) && face.count > 0;
+      if (cross(e0, e1) > 0.0f) {
+        float s = 1e30f;
+        for (int j = 0; j < hb.count; ++j)
+          s = std::min(s, dot(nN, hb.v(j) - joint));
+        s -= hb.radius;
+        float faceDeepest = 1e30f;
+        for (int k = 0; k < face.count; ++k)
+          faceDeepest = std::min(faceDeepest, face.separation[k]);
+        if (s <= margin && (!haveFace || s > faceDeepest)) {
+          m.count = 0;
+          m.normal = nN;
+          m.add(mulAdd(joint, 0.5f * s, nN), s, static_cast<std::uint16_t>(0x2000 | !atStart));
+          return toWorld(m, xfA, xfB);
+        }
+      }
+      if (!haveFace) return Manifold{};
+      return toWorld(face, xfA, xfB);
     }
-    if (!keep) return Manifold{};
   }
   return toWorld(m, xfA, xfB);
 }

@@ -15,9 +15,13 @@
 //   edge is clipped to the reference face's side planes (Sutherland-Hodgman on one edge). When
 //   the cores are apart and the closest features are two vertices, the face normal is wrong, so
 //   GJK's closest points give the normal and a single point instead.
-//   chain links: as a segment, then the normal must lie inside the cone of normals that the link's
-//   neighbours allow at each joint; a contact whose normal belongs to a neighbour is dropped (the
-//   neighbour reports it), which removes ghost collisions at the joints of a flat or concave wall.
+//   chain links: as a segment seen from its collision side (never its back face), then the normal
+//   must be one the link allows: its own face normal, or towards a convex joint the fan between
+//   its normal and the neighbour's, or anything towards an open end. A contact from closest
+//   points whose normal points into the neighbour's region is dropped (the neighbour reports
+//   it, unless the shape has crossed to the neighbour's back); a face of the shape crossing the
+//   link is clamped to the nearest allowed normal, keeping whichever separates more. This removes
+//   ghost collisions at the joints of flat, convex and concave walls.
 #pragma once
 
 #include <cstdint>

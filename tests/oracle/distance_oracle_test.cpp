@@ -8,11 +8,14 @@
 // segments. b2Distance runs with useRadii = true and a cold b2SimplexCache (count = 0), as ours
 // runs without a cache.
 //
-// For each of the 15 unordered pairs of {circle, box, polygon (half sharp, half rounded), capsule,
-// segment}, 100,000 seeded cases, half in each order (case i of a pair draws everything from
-// rc::Random(pairSeed * 1'000'003 + i), so any case replays alone), with the shapes within a few
-// metres of each other so that both separated and overlapping cases occur. A quarter of the cases
-// turn B a whole number of quarter turns from A (parallel edges), and a quarter are moved to within
+// For each of the 21 unordered pairs of {circle, box, polygon (half sharp, half rounded), capsule,
+// segment, chain link}, 100,000 seeded cases, half in each order (case i of a pair draws
+// everything from rc::Random(pairSeed * 1'000'003 + i), so any case replays alone), with the
+// shapes within a few metres of each other so that both separated and overlapping cases occur.
+// Chain links (rc::testing::randomChainLink) are half one-sided, half two-sided: distance ignores
+// sidedness and ghosts, and rc::makeProxy makes a link the 2-point core of its segment (Box2D's
+// b2DistanceProxy::Set does the same with a chain's b2EdgeShape). A quarter of the cases turn B a
+// whole number of quarter turns from A (parallel edges), and a quarter are moved to within
 // [-3e-4, 1e-3] m of touching. Checks:
 //   - distances agree within 1e-4 m;
 //   - the overlap decision (distance == 0 or > 0) agrees outside a +-1e-4 m band around touching;
@@ -40,6 +43,7 @@
 #include "physics/random.h"
 #include "physics/shapes.h"
 #include "support/box2d_adapter.h"
+#include "support/random_shapes.h"
 #include "support/reference_geometry.h"
 
 namespace {
@@ -52,8 +56,9 @@ using rc::testing::pointSegmentDistance;
 using rc::testing::signedSurfaceDistance;
 using rc::testing::toP2;
 
-enum Kind { kCircle, kBox, kPolygon, kCapsule, kSegment, kKindCount };
-const char* const kKindNames[kKindCount] = {"circle", "box", "polygon", "capsule", "segment"};
+enum Kind { kCircle, kBox, kPolygon, kCapsule, kSegment, kChainLink, kKindCount };
+const char* const kKindNames[kKindCount] = {"circle",  "box",     "polygon",
+                                            "capsule", "segment", "chain_link"};
 
 constexpr int kCasesPerPair = 100000;
 constexpr double kDistanceTolerance = 1e-4;
@@ -95,6 +100,9 @@ rc::Shape randomShape(rc::Random& rng, int kind) {
         case kCapsule:
           return rc::makeCapsule(c, c + rng.inBox({-1.5f, -1.5f}, {1.5f, 1.5f}),
                                  rng.uniform(0.05f, 0.8f));
+        case kChainLink:
+          // A link 0.2 to 2.5 m long within 1 m of the origin, with ghosts (ignored here).
+          return rc::testing::randomChainLink(rng, rng.below(2) == 0);
         default:
           return rc::makeSegment(c, c + rng.inBox({-2, -2}, {2, 2}));
       }
@@ -251,8 +259,8 @@ std::vector<PairKinds> allUnorderedPairs() {
 INSTANTIATE_TEST_SUITE_P(DistanceOracle, ShapePairs, ::testing::ValuesIn(allUnorderedPairs()),
                          pairName);
 
-TEST(DistanceOracle, PairListCoversAllFifteenUnorderedPairs) {
-  EXPECT_EQ(allUnorderedPairs().size(), 15u);
+TEST(DistanceOracle, PairListCoversAllTwentyOneUnorderedPairs) {
+  EXPECT_EQ(allUnorderedPairs().size(), 21u);
 }
 
 }  // namespace

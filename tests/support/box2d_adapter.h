@@ -46,8 +46,9 @@ struct Box2DShape {
   }
 };
 
-// Returns false for shapes Box2D 2.4.1 has no type for (capsules), and for a polygon whose hull
-// Box2D builds with a different vertex count (nearly collinear points).
+// Returns false for shapes Box2D 2.4.1 has no type for (capsules), for a polygon whose hull
+// Box2D builds with a different vertex count (nearly collinear points), and for slivers of less
+// than 1e-5 m^2.
 inline bool toB2(const Shape& s, Box2DShape* o) {
   switch (s.type) {
     case ShapeType::circle:
@@ -62,6 +63,13 @@ inline bool toB2(const Shape& s, Box2DShape* o) {
       o->polygon.m_radius = 0.0f;
       return true;
     case ShapeType::polygon: {
+      // Box2D 2.4.1 asserts (b2PolygonShape::Set, ComputeCentroid: area > b2_epsilon) on
+      // slivers that our hull accepts: leave those to the caller to draw again.
+      float twiceArea = 0.0f;
+      for (int i = 0; i < s.polygon.count; ++i)
+        twiceArea +=
+            cross(s.polygon.vertices[i], s.polygon.vertices[nextIndex(i, s.polygon.count)]);
+      if (twiceArea < 2e-5f) return false;
       o->type = b2Shape::e_polygon;
       b2Vec2 v[b2_maxPolygonVertices];
       for (int i = 0; i < s.polygon.count; ++i)

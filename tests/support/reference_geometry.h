@@ -84,6 +84,95 @@ inline double signedSurfaceDistance(const Core& c, P2 p) {
   return (coreContains(c, p) ? -edge : edge) - c.radius;
 }
 
+// Signed distance between two rounded convex shapes (cores and radii): the gap between the
+// surfaces when positive, minus the penetration depth (the shortest translation that separates
+// them) when negative. Written from the definitions, independently of physics/ (no GJK, no
+// clipping), as the arbiter of the overlap oracle.
+//
+// Candidate axes: the edge normals of both cores; for a 2-point core also its direction; for a
+// 1-point core the direction to the other core's centroid. Two disjoint convex cores are
+// separated along one of them (the separating axis theorem gives the edge normals for cores with
+// area; two disjoint segments on one line need the direction; two points the line through
+// them). The distance between disjoint convex sets is then the minimum over edge pairs of the
+// segment-segment distance, which is the minimum over every vertex of one core and every edge of
+// the other of the point-to-segment distance (a closest pair always includes a vertex; a 1-point
+// core is a degenerate edge); that is what is computed, without repeating pairs. When no axis
+// separates, the cores intersect and the depth is the minimum over the same axes of the
+// projection overlap: exact, because the faces of the Minkowski difference A - B have the edge
+// normals of both cores, and any other axis only gives a larger overlap (an upper bound).
+inline double signedDistance(const Core& a, const Core& b) {
+  double ux[2 * kMaxPolygonVertices], uy[2 * kMaxPolygonVertices];  // unit axes
+  int axisCount = 0;
+  auto addAxis = [&](double x, double y) {
+    double len = std::sqrt(x * x + y * y);  // metres, no overflow: hypot's care is not needed
+    if (len > 0.0) {
+      ux[axisCount] = x / len;
+      uy[axisCount++] = y / len;
+    }
+  };
+  auto addAxesOf = [&](const Core& c, const Core& other) {
+    if (c.count == 1) {
+      P2 m{};
+      for (int i = 0; i < other.count; ++i) {
+        m.x += other.pts[i].x / other.count;
+        m.y += other.pts[i].y / other.count;
+      }
+      addAxis(m.x - c.pts[0].x, m.y - c.pts[0].y);
+      return;
+    }
+    for (int i = 0; i < edgeCount(c); ++i) {
+      P2 s = edgeStart(c, i), e = edgeEnd(c, i);
+      addAxis(s.y - e.y, e.x - s.x);                    // normal
+      if (c.count == 2) addAxis(e.x - s.x, e.y - s.y);  // direction
+    }
+  };
+  addAxesOf(a, b);
+  addAxesOf(b, a);
+
+  // The projection of both cores on each axis: separated when the intervals are apart, else
+  // overlapping by min(maxA - minB, maxB - minA), the translation along the axis that parts them.
+  double depth = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < axisCount; ++k) {
+    auto interval = [&](const Core& c, double* lo, double* hi) {
+      *lo = std::numeric_limits<double>::infinity();
+      *hi = -*lo;
+      for (int i = 0; i < c.count; ++i) {
+        double p = c.pts[i].x * ux[k] + c.pts[i].y * uy[k];
+        *lo = std::min(*lo, p);
+        *hi = std::max(*hi, p);
+      }
+    };
+    double loA, hiA, loB, hiB;
+    interval(a, &loA, &hiA);
+    interval(b, &loB, &hiB);
+    const double gap = std::max(loB - hiA, loA - hiB);
+    if (gap > 0.0) {
+      // Squared distances from the vertices of `v` to the edges of `c` (pointSegmentDistance
+      // without the square root, one reciprocal per edge: the oracle runs this millions of times).
+      auto vertexEdge = [](const Core& v, const Core& c) {
+        double best = std::numeric_limits<double>::infinity();
+        for (int j = 0; j < edgeCount(c); ++j) {
+          const P2 s = edgeStart(c, j), e = edgeEnd(c, j);
+          const double ex = e.x - s.x, ey = e.y - s.y, ee = ex * ex + ey * ey;
+          const double inv = ee > 0.0 ? 1.0 / ee : 0.0;
+          for (int i = 0; i < v.count; ++i) {
+            const double px = v.pts[i].x - s.x, py = v.pts[i].y - s.y;
+            const double t = std::min(std::max((px * ex + py * ey) * inv, 0.0), 1.0);
+            const double dx = px - t * ex, dy = py - t * ey;
+            best = std::min(best, dx * dx + dy * dy);
+          }
+        }
+        return best;
+      };
+      return std::sqrt(std::min(vertexEdge(a, b), vertexEdge(b, a))) - a.radius - b.radius;
+    }
+    depth = std::min(depth, -gap);
+  }
+  // No axis at all only for two 1-point cores at the same point: touching cores, depth 0.
+  if (axisCount == 0) depth = 0.0;
+  return -depth - a.radius - b.radius;
+}
+
 // Support of a placed shape along direction n: max over its core points (rc::makeProxy) of p.n,
 // plus the radius.
 inline float support(const Shape& s, const Transform& xf, Vec2 n) {

@@ -21,8 +21,10 @@ class UnsupportedPair : public std::logic_error {
 Manifold collide(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB,
                  float margin = kSpeculativeDistance);
 
-// Do the shapes overlap (touching counts)? Cheap bounds first: the bounding circles are compared
-// before any exact test that needs more than a few operations.
+// Do the shapes overlap (touching counts)? Closed forms for circles, the separating axis test
+// for sharp polygons, GJK for the rest. No bounding-circle test first: callers come through the
+// broadphase, whose AABB test is the cheap bound, and after it the circles cost more than they
+// saved (geometry_bench, overlap-prefilter rows: README, Performance).
 bool testOverlap(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB);
 
 // True when collide() has a function for the pair.

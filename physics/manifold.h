@@ -62,6 +62,9 @@ Manifold collideBoxes(const Box& a, const Transform& xfA, const Box& b, const Tr
 // General path: any two solid or segment shapes as rounded hulls.
 Manifold collideHulls(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB,
                       float margin = kSpeculativeDistance);
+// A chain link against a circle, the same rules as collideChainSegment on a faster path.
+Manifold collideChainSegmentAndCircle(const ChainSegment& a, const Transform& xfA, const Circle& b,
+                                      const Transform& xfB, float margin = kSpeculativeDistance);
 // A chain link against any solid shape, ghost-free.
 Manifold collideChainSegment(const ChainSegment& a, const Transform& xfA, const Shape& b,
                              const Transform& xfB, float margin = kSpeculativeDistance);

@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "physics/collide.h"
 #include "physics/distance.h"
+#include "physics/random.h"
 #include "support/random_shapes.h"
 #include "support/reference_geometry.h"
 
@@ -346,6 +348,94 @@ TEST(Manifold, ConvexChainCornerKeepsTheCornerNormal) {
   // One-sided: a circle inside the loop collides with nothing.
   for (const rc::ChainSegment& link : links)
     EXPECT_EQ(rc::collide(link, {}, circle, {{1.0f, 0.3f}, {}}).pointCount, 0);
+}
+
+// The chain-circle fast path against the general chain path (which builds two hulls), on
+// random links with convex, concave, flat and open joints, circles up to 0.2 m deep from both
+// sides, one-sided and two-sided.
+TEST(Manifold, ChainCircleFastPathMatchesTheGeneralPath) {
+  rc::Random rng(4242);
+  int contacts = 0, clamped = 0, leaning = 0;
+  for (int i = 0; i < 100000; ++i) {
+    rc::ChainSegment link = rc::testing::randomChainLink(rng, rng.below(4) != 0);
+    rc::Circle circle =
+        rc::makeCircle(rng.inBox({-0.2f, -0.2f}, {0.2f, 0.2f}), rng.uniform(0.05f, 0.8f));
+    rc::Transform xa = rc::testing::randomTransform(rng, {}, 1.0f);
+    // The circle's centre near the link or one of its joints.
+    Vec2 p1 = link.segment.point1, p2 = link.segment.point2;
+    Vec2 near = rc::lerp(p1, p2, rng.uniform(-0.3f, 1.3f));
+    Vec2 n = rc::normalize(rc::rightPerp(p2 - p1));
+    float offset = circle.radius + rng.uniform(-0.2f, 0.05f);
+    if (rng.below(5) == 0) offset = -offset;  // behind the link
+    Vec2 centre = rc::mulAdd(near, offset, n) + 0.05f * rng.inBox({-1, -1}, {1, 1});
+    rc::Transform xb{rc::apply(xa, centre - circle.center), xa.q};
+    rc::Manifold fast = rc::collideChainSegmentAndCircle(link, xa, circle, xb);
+    rc::Manifold general = rc::collideChainSegment(link, xa, rc::Shape(circle), xb);
+    ASSERT_EQ(fast.pointCount, general.pointCount) << "case " << i;
+    if (fast.pointCount == 0) continue;
+    ++contacts;
+    clamped += (fast.points[0].id & 0x2000) != 0;
+    leaning += (fast.points[0].id & 0x100) != 0;
+    // Rounding differs (world to link frame once, or through the hulls): a normal from a
+    // difference of points a few centimetres long moves by ~1e-5.
+    EXPECT_NEAR(fast.normal.x, general.normal.x, 1e-4f) << "case " << i;
+    EXPECT_NEAR(fast.normal.y, general.normal.y, 1e-4f) << "case " << i;
+    EXPECT_NEAR(fast.points[0].separation, general.points[0].separation, 1e-5f) << "case " << i;
+    EXPECT_NEAR(fast.points[0].point.x, general.points[0].point.x, 1e-5f) << "case " << i;
+    EXPECT_NEAR(fast.points[0].point.y, general.points[0].point.y, 1e-5f) << "case " << i;
+    EXPECT_EQ(fast.points[0].id, general.points[0].id)
+        << "case " << i << " sep " << fast.points[0].separation << " normal (" << fast.normal.x
+        << ", " << fast.normal.y << ")";
+  }
+  EXPECT_GT(contacts, 30000);
+  EXPECT_GT(leaning, 1000);  // the joints are exercised
+  std::printf("%d contacts, %d at the ends, %d clamped to a joint's vertex\n", contacts, leaning,
+              clamped);
+}
+
+// A box pressed into a V-shaped valley of one-sided links (a concave joint) is pushed out of
+// both walls along their own normals, whichever face of the box leans towards the joint.
+TEST(Manifold, ChainValleyPushesOutOfBothWalls) {
+  // Right wall down to the bottom, left wall up: the valley opens upwards (the links' right).
+  std::vector<Vec2> pts = {{2, 2}, {0, 0}, {-2, 2}};
+  auto links = rc::makeChain(pts, false, true);
+  ASSERT_EQ(links.size(), 2u);
+  const Vec2 right = rc::normalize(Vec2{-1, 1}), left = rc::normalize(Vec2{1, 1});
+  for (float angle : {0.0f, 0.3f, -0.3f, 0.7f}) {
+    rc::Shape box = rc::makeOrientedBox(0.5f, 0.5f, {}, angle);
+    rc::Transform body{{0.0f, 0.65f}, {}};
+    rc::Manifold m0 = rc::collide(links[0], {}, box, body);
+    rc::Manifold m1 = rc::collide(links[1], {}, box, body);
+    ASSERT_GT(m0.pointCount, 0) << angle;
+    ASSERT_GT(m1.pointCount, 0) << angle;
+    EXPECT_NEAR(rc::dot(m0.normal, right), 1.0f, 1e-5f) << angle;
+    EXPECT_NEAR(rc::dot(m1.normal, left), 1.0f, 1e-5f) << angle;
+  }
+}
+
+// A one-sided link with neighbours on both sides never pushes a shape in front of it out
+// through its back: every normal it reports is its own or lies in a convex joint's fan, so it
+// points to the link's front. Random polygons up to 0.3 m deep across random links.
+TEST(Manifold, ChainNeverPushesThroughItsBack) {
+  rc::Random rng(777);
+  int contacts = 0;
+  for (int i = 0; i < 50000; ++i) {
+    rc::ChainSegment link = rc::testing::randomChainLink(rng, true);
+    if (link.ghost1 == link.segment.point1 || link.ghost2 == link.segment.point2) continue;
+    rc::Shape b = rc::testing::randomShape(rng, Kind::polygon);
+    Vec2 p1 = link.segment.point1, p2 = link.segment.point2;
+    Vec2 n = rc::normalize(rc::rightPerp(p2 - p1));
+    rc::Transform xb = rc::testing::randomTransform(rng, rc::lerp(p1, p2, rng.uniform()), 0.0f);
+    // Deepest point of b 0 to 0.3 m past the link's line.
+    float gap = -support(b, xb, -n) - rc::dot(n, p1);
+    xb.p = rc::mulAdd(xb.p, -gap - rng.uniform(0.0f, 0.3f), n);
+    if (rc::dot(rc::apply(xb, rc::computeMass(b, 1.0f).center) - p1, n) < 0.0f) continue;
+    rc::Manifold m = rc::collide(link, {}, b, xb);
+    if (m.pointCount == 0) continue;
+    ++contacts;
+    EXPECT_GT(rc::dot(m.normal, n), 0.0f) << "case " << i;
+  }
+  EXPECT_GT(contacts, 10000);
 }
 
 TEST(Manifold, UnregisteredPairFailsLoudly) {

@@ -39,46 +39,72 @@ CastOutput castCircle(Vec2 center, float radius, const RayCastInput& in, float l
   return out;
 }
 
-// Ray against the segment p1-p2 from the side its normal n faces; returns the hit if any.
-CastOutput castSegmentSide(Vec2 p1, Vec2 p2, Vec2 n, const RayCastInput& in) {
-  CastOutput out;
-  float denom = dot(n, in.translation);
-  if (denom >= 0.0f) return out;  // parallel or from behind
-  float num = dot(n, p1 - in.origin);
-  if (num > 0.0f) return out;  // origin behind the face
-  float t = num / denom;
-  if (t < 0.0f || t > in.maxFraction) return out;
-  Vec2 p = mulAdd(in.origin, t, in.translation);
-  Vec2 e = p2 - p1;
-  float u = dot(p - p1, e);
-  if (u < 0.0f || u > lengthSquared(e)) return out;
-  out.hit = true;
-  out.fraction = t;
-  out.point = p;
-  out.normal = n;
-  return out;
-}
-
 void keepCloser(CastOutput& best, const CastOutput& c) {
   if (c.hit && (!best.hit || c.fraction < best.fraction)) best = c;
 }
 
-bool insideCapsule(Vec2 a, Vec2 b, float r, Vec2 p) {
-  Vec2 e = b - a;
-  float t = std::clamp(dot(p - a, e) / lengthSquared(e), 0.0f, 1.0f);
-  return distanceSquared(p, mulAdd(a, t, e)) <= r * r;
+// Ray against a disc on the unscaled translation d: project the centre on the ray and take the
+// half chord from the perpendicular distance (the stable form of castCircle, without the ray's
+// length).
+[[gnu::always_inline]] inline CastOutput castDisc(Vec2 center, float r, const RayCastInput& in) {
+  const Vec2 s = center - in.origin, d = in.translation;
+  const float inv = 1.0f / lengthSquared(d);
+  const float tc = dot(s, d) * inv;
+  const Vec2 perp = mulSub(s, tc, d);
+  const float h2 = (r * r - lengthSquared(perp)) * inv;
+  if (!(h2 >= 0.0f)) return {};
+  const float t = tc - std::sqrt(h2);
+  if (t < 0.0f || t > in.maxFraction) return {};
+  const Vec2 p = mulAdd(in.origin, t, d);
+  return hitAt(normalize(p - center), p, t);
 }
 
-// Ray against a capsule whose origin is known to be outside: the two end discs and the two
-// straight sides.
-CastOutput castCapsuleOutside(Vec2 a, Vec2 b, float r, const RayCastInput& in, float length,
-                              Vec2 dir) {
-  CastOutput best = castCircle(a, r, in, length, dir);
-  keepCloser(best, castCircle(b, r, in, length, dir));
-  Vec2 n = normalize(rightPerp(b - a));
-  keepCloser(best, castSegmentSide(mulAdd(a, r, n), mulAdd(b, r, n), n, in));
-  keepCloser(best, castSegmentSide(mulSub(a, r, n), mulSub(b, r, n), -n, in));
-  return best;
+// Ray against the capsule a-b swept by r, in the capsule's own axes: u along a -> b, the
+// perpendicular coordinate of the origin qp and its rate dp. From outside the band |qp| <= r the
+// ray can only enter through the side facing it, at t = (+-r - qp) / dp; if that point lies
+// beyond an end, or the origin is already within the band beyond an end, the first hit can only
+// be that end's disc (the disc fills the band's cross-section at the end). One division, at most
+// one disc: a third of casting both discs and both sides. With insideCheck, an origin inside
+// reports fraction 0 against the ray (raycast.h).
+CastOutput castCapsule(Vec2 a, Vec2 b, float r, const RayCastInput& in, bool insideCheck);
+
+// A translation whose squared length overflows is cast shortened by an exact power of two (and
+// the fraction scaled back): the same ray, the same point.
+CastOutput castCapsuleScaled(Vec2 a, Vec2 b, float r, const RayCastInput& in, bool insideCheck) {
+  if (std::isfinite(lengthSquared(in.translation))) return castCapsule(a, b, r, in, insideCheck);
+  RayCastInput shorter{in.origin, 0x1p-70f * in.translation, 0x1p70f * in.maxFraction};
+  CastOutput out = castCapsule(a, b, r, shorter, insideCheck);
+  out.fraction *= 0x1p-70f;
+  return out;
+}
+
+CastOutput castCapsule(Vec2 a, Vec2 b, float r, const RayCastInput& in, bool insideCheck) {
+  const Vec2 e = b - a;
+  const float len2 = lengthSquared(e);
+  if (len2 == 0.0f) {
+    if (insideCheck && distanceSquared(in.origin, a) <= r * r) return startsInside(in);
+    return castDisc(a, r, in);
+  }
+  const float len = std::sqrt(len2);
+  const Vec2 u = (1.0f / len) * e;
+  const Vec2 q = in.origin - a, d = in.translation;
+  const float qa = dot(q, u), qp = cross(u, q);
+  if (std::fabs(qp) <= r) {
+    if (qa >= 0.0f && qa <= len) return insideCheck ? startsInside(in) : CastOutput{};
+    const Vec2 end = qa < 0.0f ? a : b;
+    if (insideCheck && distanceSquared(in.origin, end) <= r * r) return startsInside(in);
+    return castDisc(end, r, in);
+  }
+  const float side = qp > 0.0f ? r : -r;
+  const float dp = cross(u, d);
+  if (!(dp * side < 0.0f)) return {};  // parallel to the band or moving away from it
+  const float t = (side - qp) / dp;
+  if (t > in.maxFraction) return {};
+  const float s = qa + t * dot(d, u);
+  if (s < 0.0f) return castDisc(a, r, in);
+  if (s > len) return castDisc(b, r, in);
+  const Vec2 n = qp > 0.0f ? leftPerp(u) : rightPerp(u);
+  return hitAt(n, mulAdd(in.origin, t, d), t);
 }
 
 }  // namespace
@@ -143,13 +169,11 @@ CastOutput castBox(const Box& s, const RayCastInput& in) {
 // cast its registers and stack cost every polygon cast.
 [[gnu::noinline]] CastOutput castRoundedPolygon(const Polygon& s, const RayCastInput& in) {
   if (containsPoint(Shape(s), Transform{}, in.origin)) return startsInside(in);
-  float length = rc::length(in.translation);
-  if (length == 0.0f) return {};
-  Vec2 dir = (1.0f / length) * in.translation;
+  if (lengthSquared(in.translation) == 0.0f) return {};
   CastOutput best;
   for (int i = 0; i < s.count; ++i)
-    keepCloser(best, castCapsuleOutside(s.vertices[i], s.vertices[nextIndex(i, s.count)], s.radius,
-                                        in, length, dir));
+    keepCloser(best, castCapsuleScaled(s.vertices[i], s.vertices[nextIndex(i, s.count)], s.radius,
+                                       in, false));
   return best;
 }
 
@@ -188,11 +212,7 @@ CastOutput castPolygon(const Polygon& s, const RayCastInput& in) {
 }  // namespace
 
 CastOutput rayCast(const Capsule& s, const RayCastInput& in) {
-  if (insideCapsule(s.center1, s.center2, s.radius, in.origin)) return startsInside(in);
-  float length = rc::length(in.translation);
-  if (length == 0.0f) return {};
-  return castCapsuleOutside(s.center1, s.center2, s.radius, in, length,
-                            (1.0f / length) * in.translation);
+  return castCapsuleScaled(s.center1, s.center2, s.radius, in, true);
 }
 
 CastOutput rayCast(const Segment& s, const RayCastInput& in, bool oneSided) {

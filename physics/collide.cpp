@@ -51,10 +51,6 @@ Manifold chain(const Shape& a, const Transform& xa, const Shape& b, const Transf
                float margin) {
   return collideChainSegment(a.chainSegment, xa, b, xb, margin);
 }
-Manifold chainCircle(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
-                     float margin) {
-  return collideChainSegmentAndCircle(a.chainSegment, xa, b.circle, xb, margin);
-}
 
 bool overlapCircles(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb) {
   float r = a.circle.radius + b.circle.radius;
@@ -223,7 +219,7 @@ struct Table {
     add(ShapeType::box, ShapeType::circle, boxCircle, overlapBoxCircle);
     add(ShapeType::polygon, ShapeType::circle, polygonCircle, overlapPolygonCircle);
     add(ShapeType::segment, ShapeType::circle, segmentCircle, overlapSegmentCircle);
-    add(ShapeType::chainSegment, ShapeType::circle, chainCircle, overlapGjk);
+    add(ShapeType::chainSegment, ShapeType::circle, collideChainSegmentAndCircleShapes, overlapGjk);
     add(ShapeType::box, ShapeType::polygon, collideHulls, overlapSharpPolygons);
     add(ShapeType::segment, ShapeType::polygon, collideHulls, overlapSharpPolygons);
     add(ShapeType::segment, ShapeType::box, collideHulls, overlapSharpPolygons);

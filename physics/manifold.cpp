@@ -421,7 +421,25 @@ void collideLocal(const Hull& a, const Hull& b, float margin, Local& m) {
         static_cast<std::uint16_t>(0x4000 | (cache.indexA[0] << 4) | cache.indexB[0]);
     m.add(mulAdd(d.pointA, a.radius + 0.5f * s, d.normal), s, id);
   };
-  if (sep > 0.1f * kLinearSlop || (a.count == 2 && b.count == 2)) {
+  // GJK is needed only when the incident shape's deepest vertex along the normal projects past
+  // the reference face: otherwise that vertex and its foot on the face realise the separating
+  // axis's separation, which is then the distance (the face-vertex case, most contacts).
+  bool faceVertex = false;
+  if (sep > 0.1f * kLinearSlop && (a.count > 2 || b.count > 2)) {
+    const Vec2 v1 = ref.v(edge), e = ref.v(nextIndex(edge, ref.count)) - v1, n = ref.n[edge];
+    int k = 0;
+    float lowest = dot(n, inc.v(0));
+    for (int j = 1; j < inc.count; ++j) {
+      const float h = dot(n, inc.v(j));
+      if (h < lowest) {
+        lowest = h;
+        k = j;
+      }
+    }
+    const float u = dot(inc.v(k) - v1, e);
+    faceVertex = u >= 0.0f && u <= lengthSquared(e);
+  }
+  if (!faceVertex && (sep > 0.1f * kLinearSlop || (a.count == 2 && b.count == 2))) {
     const DistanceOutput& d = coreDistance();
     if (d.distance > 0.1f * kLinearSlop &&
         (d.simplexCount == 1 || d.distance > sep + 0.01f * kLinearSlop))
@@ -605,56 +623,91 @@ Manifold collideHulls(const Shape& a, const Transform& xfA, const Shape& b, cons
   return toWorld(m, xfA, xfB);
 }
 
-Manifold collideChainSegmentAndCircle(const ChainSegment& a, const Transform& xfA, const Circle& b,
-                                      const Transform& xfB, float margin) {
-  // The rules of collideChainSegment below, for a point: a face contact never leans, so only
-  // the end regions meet the joints (2.5x faster than the general path, which builds two hulls).
+namespace {
+// A one-point manifold in the world frame, built in place (a single return: no copy).
+// Normal and point are in A's frame.
+[[gnu::always_inline]] inline Manifold onePoint(Vec2 normal, Vec2 point, float separation,
+                                                std::uint16_t id, const Transform& xfA,
+                                                const Transform& xfB) {
+  Manifold out;
+  out.normal = rotate(xfA.q, normal);
+  out.pointCount = 1;
+  ManifoldPoint& mp = out.points[0];
+  mp.anchorA = rotate(xfA.q, point);
+  mp.point = mp.anchorA + xfA.p;
+  mp.anchorB = mp.anchorA + (xfA.p - xfB.p);
+  mp.separation = separation;
+  mp.id = id;
+  return out;
+}
+
+[[gnu::always_inline]] inline Manifold chainSegmentAndCircle(const ChainSegment& a,
+                                                             const Transform& xfA, const Circle& b,
+                                                             const Transform& xfB, float margin) {
+  // The rules of collideChainSegment below, for a point, in the link's frame: a face contact
+  // never leans, so only the end regions meet the joints (2.5x faster than the general path,
+  // which builds two hulls).
   const Vec2 c = invApply(xfA, apply(xfB, b.center));
-  Vec2 p1 = a.segment.point1, p2 = a.segment.point2, g1 = a.ghost1, g2 = a.ghost2;
-  Vec2 nR = normalize(rightPerp(p2 - p1));
-  if (dot(c - p1, nR) < 0.0f) {
+  Vec2 p1 = a.segment.point1, p2 = a.segment.point2;
+  bool reversed = false;
+  if (dot(c - p1, rightPerp(p2 - p1)) < 0.0f) {
     if (a.oneSided) return Manifold{};
     std::swap(p1, p2);
-    std::swap(g1, g2);
-    nR = -nR;
+    reversed = true;
   }
   const Vec2 e = p2 - p1;
-  const float u = dot(c - p1, e);
-  Local m;
-  if (u > 0.0f && u < lengthSquared(e)) {
-    const float dist = dot(c - p1, nR);
+  const float u = dot(c - p1, e), ee = lengthSquared(e);
+  const float reach = b.radius + margin;  // squared tests first: most pairs are out of reach
+  if (u > 0.0f && u < ee) {
+    const float side = dot(c - p1, rightPerp(e));  // distance times |e|, >= 0
+    if (side * side > reach * reach * ee) return Manifold{};
+    const Vec2 n = normalize(rightPerp(e));
+    const float dist = dot(c - p1, n);
     const float sep = dist - b.radius;
     if (sep > margin) return Manifold{};
-    m.normal = nR;
-    m.add(mulSub(c, 0.5f * (b.radius + dist), nR), sep, 0);
-    return toWorld(m, xfA, xfB);
+    return onePoint(n, mulSub(c, 0.5f * (b.radius + dist), n), sep, 0, xfA, xfB);
   }
   const bool atStart = u <= 0.0f;
   const Vec2 joint = atStart ? p1 : p2;
   const Vec2 d = c - joint;
+  if (lengthSquared(d) > reach * reach) return Manifold{};
   const float dist = length(d);
   const float sep = dist - b.radius;
   if (sep > margin) return Manifold{};
-  m.normal = dist > 0.0f ? (1.0f / dist) * d : nR;
-  m.add(mulSub(c, 0.5f * (b.radius + dist), m.normal), sep,
-        static_cast<std::uint16_t>(0x100 | !atStart));
-  if (std::fabs(dot(m.normal, normalize(e))) <= 1e-4f) return toWorld(m, xfA, xfB);
-  const Vec2 e0 = atStart ? p1 - g1 : e, e1 = atStart ? e : g2 - p2;
+  const Vec2 normal = dist > 0.0f ? (1.0f / dist) * d : normalize(rightPerp(e));
+  const Vec2 point = mulSub(c, 0.5f * (b.radius + dist), normal);
+  const auto id = static_cast<std::uint16_t>(0x100 | !atStart);
+  const float tangential = dot(normal, e);
+  if (tangential * tangential <= 1e-8f * ee) return onePoint(normal, point, sep, id, xfA, xfB);
+  // The neighbour beyond the joint, in the link's direction.
+  const Vec2 ghost = atStart != reversed ? a.ghost1 : a.ghost2;
+  const Vec2 e0 = atStart ? p1 - ghost : e, e1 = atStart ? e : ghost - p2;
   const Vec2 neighbour = atStart ? e0 : e1;
-  if (lengthSquared(neighbour) == 0.0f) return toWorld(m, xfA, xfB);  // an open end: its cap
+  if (lengthSquared(neighbour) == 0.0f)  // an open end: its cap
+    return onePoint(normal, point, sep, id, xfA, xfB);
   const Vec2 nN = normalize(rightPerp(neighbour));
   const bool convex = cross(e0, e1) > 0.0f;
-  if (convex && (atStart ? cross(nN, m.normal) >= -1e-4f : cross(m.normal, nN) >= -1e-4f))
-    return toWorld(m, xfA, xfB);
+  if (convex && (atStart ? cross(nN, normal) >= -1e-4f : cross(normal, nN) >= -1e-4f))
+    return onePoint(normal, point, sep, id, xfA, xfB);
   // Past what the joint allows: the neighbour's, unless it cannot see the circle. Then only a
   // convex joint's vertex can hold it (the link's face does not reach past its end).
-  if (!a.oneSided || dot(c - joint, nN) >= 0.0f || !convex) return Manifold{};
+  if (!a.oneSided || dot(d, nN) >= 0.0f || !convex) return Manifold{};
   const float s = dot(nN, d) - b.radius;
   if (s > margin) return Manifold{};
-  m.count = 0;
-  m.normal = nN;
-  m.add(mulAdd(joint, 0.5f * s, nN), s, static_cast<std::uint16_t>(0x2000 | !atStart));
-  return toWorld(m, xfA, xfB);
+  return onePoint(nN, mulAdd(joint, 0.5f * s, nN), s, static_cast<std::uint16_t>(0x2000 | !atStart),
+                  xfA, xfB);
+}
+
+}  // namespace
+
+Manifold collideChainSegmentAndCircle(const ChainSegment& a, const Transform& xfA, const Circle& b,
+                                      const Transform& xfB, float margin) {
+  return chainSegmentAndCircle(a, xfA, b, xfB, margin);
+}
+
+Manifold collideChainSegmentAndCircleShapes(const Shape& a, const Transform& xfA, const Shape& b,
+                                            const Transform& xfB, float margin) {
+  return chainSegmentAndCircle(a.chainSegment, xfA, b.circle, xfB, margin);
 }
 
 Manifold collideChainSegment(const ChainSegment& a, const Transform& xfA, const Shape& b,
@@ -662,13 +715,11 @@ Manifold collideChainSegment(const ChainSegment& a, const Transform& xfA, const 
   Hull hb;
   makeHull(b, invMul(xfA, xfB), &hb);
   Vec2 p1 = a.segment.point1, p2 = a.segment.point2, g1 = a.ghost1, g2 = a.ghost2;
-  Vec2 nR = normalize(rightPerp(p2 - p1));
-  if (dot(hb.centroid - p1, nR) < 0.0f) {
+  if (dot(hb.centroid - p1, rightPerp(p2 - p1)) < 0.0f) {
     if (a.oneSided) return Manifold{};
     // Seen from the left: reverse the link so the shape is on its right.
     std::swap(p1, p2);
     std::swap(g1, g2);
-    nR = -nR;
   }
   Hull ha;
   setTwoPointHull(&ha, p1, p2, 0.0f);
@@ -683,9 +734,10 @@ Manifold collideChainSegment(const ChainSegment& a, const Transform& xfA, const 
     m.count = 0;
     if (!clipToFace(ha, 0, hb, false, margin, m) || m.count == 0) return Manifold{};
   }
-  Vec2 e = p2 - p1;
-  float tangential = dot(m.normal, normalize(e));
-  if (std::fabs(tangential) > 1e-4f) {
+  const Vec2 e = p2 - p1;
+  // |normal . e| > 1e-4 |e|, without the square root.
+  const float tangential = dot(m.normal, e);
+  if (tangential * tangential > 1e-8f * lengthSquared(e)) {
     // The normal leans towards a joint. The neighbour beyond it is e0 (into the joint) and e1
     // (out of it), in the link's direction; its collision-side normal is nN.
     const bool atStart = tangential < 0.0f;

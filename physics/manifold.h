@@ -65,6 +65,10 @@ Manifold collideHulls(const Shape& a, const Transform& xfA, const Shape& b, cons
 // A chain link against a circle, the same rules as collideChainSegment on a faster path.
 Manifold collideChainSegmentAndCircle(const ChainSegment& a, const Transform& xfA, const Circle& b,
                                       const Transform& xfB, float margin = kSpeculativeDistance);
+// The same with the dispatch table's signature (collide.cpp): one call instead of two on the
+// path a bullet against a wall of links takes.
+Manifold collideChainSegmentAndCircleShapes(const Shape& a, const Transform& xfA, const Shape& b,
+                                            const Transform& xfB, float margin);
 // A chain link against any solid shape, ghost-free.
 Manifold collideChainSegment(const ChainSegment& a, const Transform& xfA, const Shape& b,
                              const Transform& xfB, float margin = kSpeculativeDistance);

@@ -1,6 +1,7 @@
 #include "physics/distance.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 
 namespace rc {
@@ -391,34 +392,94 @@ SegmentIntersection intersectSegments(Vec2 p1, Vec2 q1, Vec2 p2, Vec2 q2) {
   return out;
 }
 
+namespace {
+
+// Knuth's TwoSum: s = fl(a + b) and s + e == a + b exactly. Needs round-to-nearest double
+// arithmetic without reassociation or extended precision (SSE2; the build has no -ffast-math).
+void twoSum(double a, double b, double& s, double& e) {
+  s = a + b;
+  double bv = s - a, av = s - bv;
+  e = (a - av) + (b - bv);
+}
+
+// Sign of (q - p) x (r - p), exact for all finite float inputs: +1 when r is left of p -> q,
+// -1 right, 0 on the line (always 0 when p == q).
+int orientation(Vec2 p, Vec2 q, Vec2 r) {
+  // Expanded, the determinant is six products of two floats, each exact in double (24 + 24 bits),
+  // so only their sum can round. The rounded sum errs by at most 5 u sum|t| (u = 2^-53); beyond
+  // 8 u sum|t| its sign is the true one, which settles all but near-collinear triples.
+  const double t[6] = {static_cast<double>(q.x) * r.y,  -static_cast<double>(q.x) * p.y,
+                       -static_cast<double>(p.x) * r.y, -static_cast<double>(q.y) * r.x,
+                       static_cast<double>(q.y) * p.x,  static_cast<double>(p.y) * r.x};
+  double sum = 0.0, magnitude = 0.0;
+  for (double v : t) {
+    sum += v;
+    magnitude += std::fabs(v);
+  }
+  if (std::fabs(sum) > 4.0 * DBL_EPSILON * magnitude) return sum > 0.0 ? 1 : -1;
+  // Otherwise sum exactly: grow a nonoverlapping expansion with TwoSum (Shewchuk, "Adaptive
+  // precision floating-point arithmetic and fast robust geometric predicates", 1997). Its
+  // components increase in magnitude, zeros aside, and the largest nonzero one outweighs all the
+  // others together, so it carries the sign of the sum.
+  double e[6];
+  int n = 0;
+  for (double v : t) {
+    double grown = v;
+    for (int k = 0; k < n; ++k)
+      twoSum(grown, e[k], grown, e[k]);
+    e[n++] = grown;
+  }
+  for (int k = n - 1; k >= 0; --k) {
+    if (e[k] != 0.0) return e[k] > 0.0 ? 1 : -1;
+  }
+  return 0;
+}
+
+// Whether x, known to be collinear with p and q, lies on the closed segment [p, q]. For p == q
+// (no line) it asks whether x == p, which is also the right question.
+bool withinSpan(Vec2 p, Vec2 q, Vec2 x) {
+  return std::min(p.x, q.x) <= x.x && x.x <= std::max(p.x, q.x) && std::min(p.y, q.y) <= x.y &&
+         x.y <= std::max(p.y, q.y);
+}
+
+}  // namespace
+
 bool trianglesOverlap(const Vec2 a[3], const Vec2 b[3]) {
-  // Separating axis theorem, in double for exact orientation. The six edge normals suffice for
-  // triangles with area; degenerate ones (segments, points) also need the edge directions and
-  // the line between the two centroids, which are tested too (a separating axis found among
-  // extra axes is still a valid one).
-  auto separatedOn = [&](double nx, double ny) {
-    double minP = 1e300, maxP = -1e300, minQ = 1e300, maxQ = -1e300;
-    for (int k = 0; k < 3; ++k) {
-      double vp = nx * a[k].x + ny * a[k].y, vq = nx * b[k].x + ny * b[k].y;
-      minP = std::min(minP, vp);
-      maxP = std::max(maxP, vp);
-      minQ = std::min(minQ, vq);
-      maxQ = std::max(maxQ, vq);
-    }
-    return maxP < minQ || maxQ < minP;
-  };
-  for (const Vec2* t : {a, b}) {
-    for (int i = 0; i < 3; ++i) {
-      double ex = static_cast<double>(t[(i + 1) % 3].x) - t[i].x;
-      double ey = static_cast<double>(t[(i + 1) % 3].y) - t[i].y;
-      if (separatedOn(-ey, ex) || separatedOn(ex, ey)) return false;
+  // Every decision is an exact orientation sign or a comparison of coordinates, so touching is
+  // decided exactly, with no tolerance. The triangles (or segments or points: a zero-area triangle
+  // is the union of its three edges) share a point iff an edge of one meets an edge of the other,
+  // or, failing that, one lies wholly inside the other, which only a triangle with area can
+  // contain.
+  for (int k = 0; k < 3; ++k) {
+    if (!isFinite(a[k]) || !isFinite(b[k])) return false;
+  }
+  int sideA[3][3], sideB[3][3];  // sideA[i][j]: b[j] against edge a[i] -> a[i+1]; sideB alike
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      sideA[i][j] = orientation(a[i], a[(i + 1) % 3], b[j]);
+      sideB[j][i] = orientation(b[j], b[(j + 1) % 3], a[i]);
     }
   }
-  double cx = (static_cast<double>(b[0].x) + b[1].x + b[2].x) -
-              (static_cast<double>(a[0].x) + a[1].x + a[2].x);
-  double cy = (static_cast<double>(b[0].y) + b[1].y + b[2].y) -
-              (static_cast<double>(a[0].y) + a[1].y + a[2].y);
-  return !separatedOn(cx, cy);
+  for (int i = 0; i < 3; ++i) {
+    int i1 = (i + 1) % 3;
+    for (int j = 0; j < 3; ++j) {
+      int j1 = (j + 1) % 3;
+      // Closed segments [a_i, a_i1] and [b_j, b_j1] (either may be a point) meet iff they cross
+      // properly or an endpoint of one lies on the other.
+      int o1 = sideA[i][j], o2 = sideA[i][j1], o3 = sideB[j][i], o4 = sideB[j][i1];
+      if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+      if ((o1 == 0 && withinSpan(a[i], a[i1], b[j])) ||
+          (o2 == 0 && withinSpan(a[i], a[i1], b[j1])) ||
+          (o3 == 0 && withinSpan(b[j], b[j1], a[i])) || (o4 == 0 && withinSpan(b[j], b[j1], a[i1])))
+        return true;
+    }
+  }
+  // No boundaries meet: they overlap only if one lies strictly inside the other, and then so
+  // does its vertex 0.
+  int areaA = orientation(a[0], a[1], a[2]), areaB = orientation(b[0], b[1], b[2]);
+  if (areaA != 0 && sideA[0][0] == areaA && sideA[1][0] == areaA && sideA[2][0] == areaA)
+    return true;
+  return areaB != 0 && sideB[0][0] == areaB && sideB[1][0] == areaB && sideB[2][0] == areaB;
 }
 
 float circlePlaneSeparation(Vec2 center, float radius, Vec2 n, float d) {

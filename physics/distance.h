@@ -64,7 +64,12 @@ struct SegmentIntersection {
 };
 SegmentIntersection intersectSegments(Vec2 p1, Vec2 q1, Vec2 p2, Vec2 q2);
 
-// Triangle-triangle overlap (boundaries touching count), for triangles in any winding.
+// Whether the closed triangles share a point (boundaries touching count), in either winding.
+// A zero-area triangle is not rejected: it is the point set it spans, the segment between its
+// two extreme vertices (a point when all three coincide), and the answer is whether that set
+// meets the other triangle, itself possibly degenerate. The answer is exact for every finite
+// input (exact orientation signs, no tolerance). A non-finite coordinate (NaN, infinity) spans
+// no point set: the answer is false.
 bool trianglesOverlap(const Vec2 a[3], const Vec2 b[3]);
 
 // The seed chapters' plane tests. A line (plane) is the points x with dot(n, x) + d = 0, n unit.

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -742,9 +743,8 @@ TEST(TrianglesOverlap, MatchesBruteForceBothWindings) {
         b[k] = cb + sb * rng.inBox({-1, -1}, {1, 1});
       }
     }
-    // Collinear vertices: not a triangle. (trianglesOverlap's SAT has no axis along such a
-    // triangle's line, so two disjoint collinear ones, or two distinct points, come out
-    // overlapping.)
+    // Collinear vertices: the reference's point-in-triangle test is only right for triangles
+    // with area. Zero-area ones are covered by the tests below.
     if (degenerate(a) || degenerate(b)) continue;
     ++compared;
     bool want = trianglesOverlapRef(a, b);
@@ -760,6 +760,183 @@ TEST(TrianglesOverlap, MatchesBruteForceBothWindings) {
   EXPECT_GT(compared, 18000);
   EXPECT_GT(overlaps, compared / 5);
   EXPECT_LT(overlaps, compared * 4 / 5);
+}
+
+// Zero-area triangles are the segment between their extreme vertices, or a point: the answer is
+// whether that point set meets the other triangle (physics/distance.h). Every case is checked in
+// both argument orders and all six vertex orders of each side.
+void expectOverlap(const Vec2 a[3], const Vec2 b[3], bool want, const char* what) {
+  const int perms[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}, {0, 2, 1}, {2, 1, 0}, {1, 0, 2}};
+  for (const auto& pa : perms) {
+    for (const auto& pb : perms) {
+      const Vec2 ta[3] = {a[pa[0]], a[pa[1]], a[pa[2]]}, tb[3] = {b[pb[0]], b[pb[1]], b[pb[2]]};
+      EXPECT_EQ(rc::trianglesOverlap(ta, tb), want) << what;
+      EXPECT_EQ(rc::trianglesOverlap(tb, ta), want) << what << " (swapped)";
+    }
+  }
+}
+
+TEST(TrianglesOverlap, CollinearHandCases) {
+  const Vec2 t[3] = {{0, 0}, {4, 0}, {0, 4}};  // legs on the axes, hypotenuse x + y = 4
+  auto segment = [](Vec2 p, Vec2 q, Vec2 m) { return std::array<Vec2, 3>{p, q, m}; };
+  auto point = [](Vec2 p) { return std::array<Vec2, 3>{p, p, p}; };
+
+  // A segment (three collinear vertices, the middle one listed anywhere) against a triangle.
+  expectOverlap(t, segment({-2, 1}, {5, 1}, {-1, 1}).data(), true, "crosses, no vertex inside");
+  expectOverlap(t, segment({-1, 1}, {6, 1}, {1, 1}).data(), true, "crosses, middle inside");
+  expectOverlap(t, segment({1, 1}, {2, 1}, {1.5f, 1}).data(), true, "wholly inside");
+  expectOverlap(t, segment({3, 3}, {5, 5}, {4, 4}).data(), false, "beyond the hypotenuse");
+  expectOverlap(t, segment({5, 0}, {0, 5}, {2.5f, 2.5f}).data(), false, "parallel, outside");
+  expectOverlap(t, segment({5, 0}, {7, 0}, {6, 0}).data(), false, "on an edge's line, beyond");
+  expectOverlap(t, segment({4, 0}, {6, 0}, {5, 0}).data(), true, "touches a vertex end-on");
+  expectOverlap(t, segment({1, 0}, {3, 0}, {2, 0}).data(), true, "lies along an edge");
+  expectOverlap(t, segment({2, 2}, {4, 4}, {3, 3}).data(), true, "ends on the hypotenuse");
+  expectOverlap(t, segment({1, 1}, {6, 6}, {1, 1}).data(), true, "two equal vertices, crosses");
+  expectOverlap(t, segment({5, 5}, {6, 6}, {5, 5}).data(), false, "two equal vertices, apart");
+
+  // A point (three equal vertices) against a triangle.
+  expectOverlap(t, point({1, 1}).data(), true, "point inside");
+  expectOverlap(t, point({2, 0}).data(), true, "point on an edge");
+  expectOverlap(t, point({0, 4}).data(), true, "point on a vertex");
+  expectOverlap(t, point({2, 2}).data(), true, "point on the hypotenuse");
+  expectOverlap(t, point({3, 3}).data(), false, "point outside");
+  expectOverlap(t, point({5, 0}).data(), false, "point on an edge's line, beyond the edge");
+
+  // Two zero-area triangles on one line: overlapping, touching end to end, apart.
+  const auto s = segment({0, 0}, {2, 0}, {1, 0});
+  expectOverlap(s.data(), segment({1, 0}, {5, 0}, {3, 0}).data(), true, "collinear, overlap");
+  expectOverlap(s.data(), segment({2, 0}, {4, 0}, {3, 0}).data(), true, "collinear, end to end");
+  expectOverlap(s.data(), segment({3, 0}, {5, 0}, {4, 0}).data(), false, "collinear, apart");
+  expectOverlap(s.data(), segment({-1, 0}, {3, 0}, {0, 0}).data(), true, "collinear, contains");
+  const auto d = segment({0, 0}, {2, 2}, {1, 1});
+  expectOverlap(d.data(), segment({3, 3}, {5, 5}, {4, 4}).data(), false, "diagonal, apart");
+  expectOverlap(d.data(), segment({2, 2}, {4, 4}, {3, 3}).data(), true, "diagonal, end to end");
+
+  // Other zero-area pairs: crossing, parallel, points.
+  expectOverlap(segment({0, 0}, {2, 2}, {0, 0}).data(), segment({0, 2}, {2, 0}, {2, 0}).data(),
+                true, "segments cross");
+  expectOverlap(s.data(), segment({0, 1}, {2, 1}, {1, 1}).data(), false, "parallel segments");
+  expectOverlap(s.data(), segment({1, -1}, {1, 1}, {1, 0}).data(), true, "T junction");
+  expectOverlap(s.data(), point({1.5f, 0}).data(), true, "point on a segment");
+  expectOverlap(s.data(), point({3, 0}).data(), false, "point on a segment's line, beyond");
+  expectOverlap(s.data(), point({1, 0.5f}).data(), false, "point beside a segment");
+  expectOverlap(point({1, 2}).data(), point({1, 2}).data(), true, "equal points");
+  expectOverlap(point({1, 2}).data(), point({1, 3}).data(), false, "distinct points");
+
+  // Non-finite coordinates span no point set.
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  expectOverlap(t, point({nan, 1}).data(), false, "NaN");
+  expectOverlap(t, segment({-inf, 1}, {inf, 1}, {0, 1}).data(), false, "infinite");
+}
+
+TEST(TrianglesOverlap, ExactFarFromTheOrigin) {
+  // A segment from (X, e) to (-e, X) and the point (X/2, X/2), X = 2^40, e = 2^-40. By hand,
+  // (p1 - p0) x (r - p0) = (-e - X)(X/2 - e) - (X - e)(-X/2) = e^2 > 0: the point is off the
+  // segment's line (by 2^-80 / |p1 - p0|), so nothing touches. Projections in double round
+  // X - e to X and put the point on the line; exact orientation signs do not.
+  const float X = 0x1p40f, e = 0x1p-40f;
+  const Vec2 segment[3] = {{X, e}, {-e, X}, {X, e}};
+  const Vec2 triangle[3] = {{X, e}, {-e, X}, {X, X}};  // the segment plus a far apex
+  const Vec2 point[3] = {{X / 2, X / 2}, {X / 2, X / 2}, {X / 2, X / 2}};
+  const Vec2 below[3] = {{X / 2, X / 2}, {0, 0}, {0, X / 2}};  // on the origin's side
+  const Vec2 endpoint[3] = {{X, e}, {X, e}, {X, e}};
+  expectOverlap(segment, point, false, "segment, point e^2 off its line");
+  expectOverlap(segment, below, false, "segment, triangle e^2 off its line");
+  expectOverlap(triangle, point, false, "triangle, point e^2 off its edge");
+  expectOverlap(triangle, below, false, "triangle, triangle e^2 off its edge");
+  expectOverlap(segment, endpoint, true, "segment, its endpoint");
+  expectOverlap(triangle, endpoint, true, "triangle, its vertex");
+}
+
+// Independent reference for any triangles, degenerate or not: the point sets are disjoint iff
+// some axis separates their projections, and the candidate axes here are the direction of every
+// pair of the six vertices and its perpendicular. That includes every axis the separating axis
+// theorem needs: the edge normals of both, the direction of a zero-area triangle's segment (two
+// collinear segments, a point beyond a segment's end), the line between two points. The test's
+// coordinates are multiples of 2^-9 below 8 in magnitude, so every difference, product and sum
+// below is a multiple of 2^-18 below 2^9 (27 significant bits at most): exact in long double
+// and in double, touching included.
+bool trianglesOverlapSat(const Vec2 a[3], const Vec2 b[3]) {
+  const Vec2 all[6] = {a[0], a[1], a[2], b[0], b[1], b[2]};
+  auto separates = [&](long double nx, long double ny) {
+    long double loA = 1e30L, hiA = -1e30L, loB = 1e30L, hiB = -1e30L;
+    for (int k = 0; k < 3; ++k) {
+      long double pa = nx * a[k].x + ny * a[k].y, pb = nx * b[k].x + ny * b[k].y;
+      loA = std::min(loA, pa);
+      hiA = std::max(hiA, pa);
+      loB = std::min(loB, pb);
+      hiB = std::max(hiB, pb);
+    }
+    return hiA < loB || hiB < loA;
+  };
+  for (int i = 0; i < 6; ++i) {
+    for (int j = i + 1; j < 6; ++j) {
+      long double dx = static_cast<long double>(all[j].x) - all[i].x;
+      long double dy = static_cast<long double>(all[j].y) - all[i].y;
+      if (separates(dx, dy) || separates(-dy, dx)) return false;
+    }
+  }
+  return true;
+}
+
+TEST(TrianglesOverlap, DegenerateMatchesSeparatingAxes) {
+  rc::Random rng(78);
+  int zeroArea = 0, zeroAreaOverlaps = 0, points = 0, overlaps = 0;
+  constexpr int kCases = 20000;
+  for (int i = 0; i < kCases; ++i) {
+    // Grid step 1 (many shared vertices, collinear triples, touching) or 1/256 (general
+    // position), coordinates within +-4.
+    const float step = i % 2 == 0 ? 1.0f : 1.0f / 256.0f;
+    const int span = static_cast<int>(4.0f / step);
+    auto coordinate = [&] {
+      return step * static_cast<float>(static_cast<int>(rng.below(2 * span + 1)) - span);
+    };
+    auto draw = [&](Vec2 t[3]) {
+      switch (rng.below(5)) {
+        case 0:
+        case 1:  // three free vertices (zero area only by chance)
+          for (int k = 0; k < 3; ++k)
+            t[k] = {coordinate(), coordinate()};
+          break;
+        case 2:
+        case 3: {  // collinear: p + k d, k in [-2, 2], some k equal
+          Vec2 p{coordinate() / 2, coordinate() / 2};
+          Vec2 dir{static_cast<float>(static_cast<int>(rng.below(5)) - 2) * step,
+                   static_cast<float>(static_cast<int>(rng.below(5)) - 2) * step};
+          if (step < 1.0f) dir = 16.0f * dir;
+          for (int k = 0; k < 3; ++k)
+            t[k] = p + static_cast<float>(static_cast<int>(rng.below(5)) - 2) * dir;
+          break;
+        }
+        default:  // a point
+          t[0] = t[1] = t[2] = Vec2{coordinate(), coordinate()};
+          break;
+      }
+    };
+    Vec2 a[3], b[3];
+    draw(a);
+    draw(b);
+    bool want = trianglesOverlapSat(a, b);
+    bool flat = degenerate(a) || degenerate(b);
+    zeroArea += flat ? 1 : 0;
+    zeroAreaOverlaps += flat && want ? 1 : 0;
+    points += (a[0] == a[1] && a[1] == a[2]) || (b[0] == b[1] && b[1] == b[2]) ? 1 : 0;
+    overlaps += want ? 1 : 0;
+    const Vec2 ra[3] = {a[2], a[0], a[1]}, rb[3] = {b[1], b[0], b[2]};
+    ASSERT_EQ(rc::trianglesOverlap(a, b), want) << "case " << i;
+    ASSERT_EQ(rc::trianglesOverlap(b, a), want) << "case " << i;
+    ASSERT_EQ(rc::trianglesOverlap(ra, rb), want) << "case " << i;
+    ASSERT_EQ(rc::trianglesOverlap(rb, ra), want) << "case " << i;
+  }
+  // The mix is worth testing: plenty of zero-area triangles and points, overlapping or not.
+  EXPECT_GT(zeroArea, kCases / 2);
+  EXPECT_GT(points, kCases / 5);
+  EXPECT_GT(zeroAreaOverlaps, zeroArea / 10);
+  EXPECT_LT(zeroAreaOverlaps, zeroArea * 9 / 10);
+  RecordProperty("zero_area_cases", zeroArea);
+  RecordProperty("zero_area_overlapping", zeroAreaOverlaps);
+  RecordProperty("overlapping", overlaps);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -18,9 +18,18 @@
 // surfaces, 3 b2_linearSlop, as Box2D intends.)
 //
 // Cases: for each of the 10 unordered pairs of {circle, box, polygon (half sharp, half rounded),
-// capsule}, 100,000 seeded sweeps, half in each order. Both bodies translate and rotate: B drifts
-// up to 0.5 m and turns up to 0.5 rad, A starts 1.5 to 5 m away heading for a point near B and
-// turns up to 1 rad, so most sweeps hit.
+// capsule} and each of those against a segment, 100,000 seeded sweeps, half in each order. Both
+// bodies translate and rotate: B drifts up to 0.5 m and turns up to 0.5 rad, A starts 1.5 to 5 m
+// away heading for a point near B and turns up to 1 rad, so most sweeps hit.
+//
+// The measure, time of impact within 0.25 x 0.005 m of motion, is taken against the
+// exact time of impact: the first t at which the cores come within the target, found with the
+// reference distance alone (support/sweeps.h). Every hit of ours must leave the cores 0 to
+// 0.25 b2_linearSlop (plus 1e-4 m of float slack) short of the target at its t, a distance the
+// shapes still have to close along the normal, and must not come after that first t. Box2D's
+// answers cannot be held to one tolerance of ours: its band is +-tol about the target, ours
+// [0, tol), so the two differ by up to 2 tol of separation even when both are right. Against
+// Box2D the checks are these:
 //
 // Checks. States are compared as classes: contact at the start (Box2D e_overlapped, or
 // e_touching at t = 0; ours overlapped, or hit at 0), hit (t > 0), separated, failed.
@@ -106,6 +115,8 @@ Outcome outcomeOf(const rc::ToiOutput& o) {
 }
 
 struct PairStats {
+  int oursHit = 0, outsideBand = 0, passedThrough = 0;
+  double worstGapAbove = -1e30, worstGapBelow = 1e30;
   int bothHit = 0;
   int headOn = 0, headOnWithinTol = 0, headOnBeyond2Tol = 0;
   double worstHeadOn = 0;
@@ -146,10 +157,14 @@ struct Arbiter {
   }
 };
 
+// The four solid kinds and the segment (static geometry, or a kinematic body's: it may move).
+constexpr Kind kKinds[5] = {Kind::circle, Kind::box, Kind::polygon, Kind::capsule, Kind::segment};
+
 PairStats runPair(int ia, int ib) {
   PairStats st;
-  const std::uint64_t pairSeed = 7000 + static_cast<std::uint64_t>(ia * 4 + ib);
-  const Kind* kinds = rc::testing::kSolidKinds;
+  const std::uint64_t pairSeed = ib == 4 ? 7100 + static_cast<std::uint64_t>(ia)
+                                         : 7000 + static_cast<std::uint64_t>(ia * 4 + ib);
+  const Kind* kinds = kKinds;
   auto start = std::chrono::steady_clock::now();
   for (int i = 0; i < kCasesPerPair; ++i) {
     rc::Random rng(pairSeed * 1'000'003ull + static_cast<std::uint64_t>(i));
@@ -177,6 +192,20 @@ PairStats runPair(int ia, int ib) {
         << "pair " << ia << ib << " case " << i;
     Outcome o = outcomeOf(ours), b = outcomeOf(theirs);
     ++st.table[o][b];
+    if (o == kHit) {
+      // The measure, against the exact time of impact (the first time the cores come
+      // within the target, by the reference distance): at our time the cores are 0 to 0.25 slop
+      // short of it (a distance the shapes still have to travel towards each other, along the
+      // normal), and we never passed it.
+      ++st.oursHit;
+      const float gap = c.coreDistanceAt(ours.fraction) - coreTarget;
+      st.worstGapAbove = std::max(st.worstGapAbove, static_cast<double>(gap));
+      st.worstGapBelow = std::min(st.worstGapBelow, static_cast<double>(gap));
+      if (gap > kTol + kSlack || gap < -kSlack) ++st.outsideBand;
+      const float reached = rc::testing::firstBelowLipschitz(
+          c, [&](float t) { return c.coreDistanceAt(t); }, coreTarget - kSlack, 0.25f * kTol);
+      if (ours.fraction > reached) ++st.passedThrough;
+    }
     st.oursFailed += o == kFailed;
     st.box2dFailed += b == kFailed;
     if (o == b && o != kHit) continue;
@@ -223,10 +252,10 @@ PairStats runPair(int ia, int ib) {
 TEST(ToiOracle, AllPairsAgreeWithBox2D) {
   int headOn = 0, headOnWithinTol = 0, arbitrated = 0, box2dWrong = 0;
   for (int ia = 0; ia < 4; ++ia) {
-    for (int ib = ia; ib < 4; ++ib) {
+    for (int ib = ia; ib < 5; ++ib) {
       PairStats st = runPair(ia, ib);
-      const char* na = rc::testing::kindName(rc::testing::kSolidKinds[ia]);
-      const char* nb = rc::testing::kindName(rc::testing::kSolidKinds[ib]);
+      const char* na = rc::testing::kindName(kKinds[ia]);
+      const char* nb = rc::testing::kindName(kKinds[ib]);
       std::printf(
           "[ ToiOracle ] %s / %s: %.2f s; %d both hit, %d head-on: %.1f%% within tol of "
           "motion, worst %.2g m; %d arbitrated: Box2D wrong in %d, ours in %d; gave up: "
@@ -239,13 +268,21 @@ TEST(ToiOracle, AllPairsAgreeWithBox2D) {
           if (o != b && st.table[o][b] > 0)
             std::printf(" ours %s/b2 %s %d;", kOutcomeNames[o], kOutcomeNames[b], st.table[o][b]);
       std::printf("\n");
+      std::printf(
+          "[ ToiOracle ] %s / %s: ours hit %d times; at our time the cores are %.2g to %.2g m "
+          "from the exact contact (target), %d outside [0, 0.25 slop], %d past it\n",
+          na, nb, st.oursHit, st.worstGapBelow, st.worstGapAbove, st.outsideBand, st.passedThrough);
+      EXPECT_EQ(st.outsideBand, 0) << na << " / " << nb;
+      EXPECT_EQ(st.passedThrough, 0) << na << " / " << nb;
       EXPECT_EQ(st.oursWrong, 0) << na << " / " << nb << ", first: " << st.firstWrong;
       EXPECT_EQ(st.headOnBeyond2Tol, 0) << na << " / " << nb;
       // Conservative advancement gives up (with a safe fraction) only on long grazing sweeps of a
       // fast-turning body: measured 0 to 3 per 100,000 here.
       EXPECT_LE(st.oursFailed, kCasesPerPair / 10000) << na << " / " << nb;
-      EXPECT_GE(st.bothHit, kCasesPerPair / 2) << na << " / " << nb;
-      EXPECT_GE(st.headOn, kCasesPerPair / 5) << na << " / " << nb;
+      // A segment has no width: more sweeps pass it by (measured 42-47% hit, 14-17% head-on).
+      const bool segment = ib == 4;
+      EXPECT_GE(st.bothHit, kCasesPerPair * (segment ? 35 : 50) / 100) << na << " / " << nb;
+      EXPECT_GE(st.headOn, kCasesPerPair * (segment ? 12 : 20) / 100) << na << " / " << nb;
       headOn += st.headOn;
       headOnWithinTol += st.headOnWithinTol;
       arbitrated += st.arbitrated;

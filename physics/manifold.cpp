@@ -712,8 +712,39 @@ Manifold collideChainSegmentAndCircleShapes(const Shape& a, const Transform& xfA
 
 Manifold collideChainSegment(const ChainSegment& a, const Transform& xfA, const Shape& b,
                              const Transform& xfB, float margin) {
+  const Transform rel = invMul(xfA, xfB);
+  if (b.type == ShapeType::box) {
+    // The same for a box: its extent along the normal from its centre and half extents.
+    const Vec2 p = a.segment.point1, e = a.segment.point2 - p, n = rightPerp(e);
+    const Vec2 nB = invRotate(rel.q, n);
+    const float mid = dot(n, rel.p - p) + dot(nB, b.box.center);
+    const float half =
+        std::fabs(nB.x) * b.box.halfExtents.x + std::fabs(nB.y) * b.box.halfExtents.y;
+    const float reach2 = margin * margin * lengthSquared(e);
+    const float front = mid - half, back = mid + half;
+    if ((front > 0.0f && front * front > reach2) || (back < 0.0f && back * back > reach2))
+      return Manifold{};
+  } else if (b.type == ShapeType::polygon) {
+    // The link's line first, with the polygon where it is (one rotation of the line's normal
+    // instead of moving every point and normal of the polygon): a polygon wholly farther than
+    // the margin on either side of the line touches nothing.
+    const Vec2 p = a.segment.point1, e = a.segment.point2 - p, n = rightPerp(e);  // |n| = |e|
+    const Vec2 nB = invRotate(rel.q, n);
+    const float offset = dot(n, rel.p - p);
+    float lo = dot(nB, b.polygon.vertices[0]), hi = lo;
+    for (int i = 1; i < b.polygon.count; ++i) {
+      const float h = dot(nB, b.polygon.vertices[i]);
+      lo = std::min(lo, h);
+      hi = std::max(hi, h);
+    }
+    const float reach = margin + b.polygon.radius;
+    const float reach2 = reach * reach * lengthSquared(e);
+    const float front = offset + lo, back = offset + hi;
+    if ((front > 0.0f && front * front > reach2) || (back < 0.0f && back * back > reach2))
+      return Manifold{};
+  }
   Hull hb;
-  makeHull(b, invMul(xfA, xfB), &hb);
+  makeHull(b, rel, &hb);
   Vec2 p1 = a.segment.point1, p2 = a.segment.point2, g1 = a.ghost1, g2 = a.ghost2;
   if (dot(hb.centroid - p1, rightPerp(p2 - p1)) < 0.0f) {
     if (a.oneSided) return Manifold{};

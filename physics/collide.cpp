@@ -9,15 +9,8 @@
 namespace rc {
 namespace {
 
-using ManifoldFn = Manifold (*)(const Shape&, const Transform&, const Shape&, const Transform&,
-                                float margin);
-using OverlapFn = bool (*)(const Shape&, const Transform&, const Shape&, const Transform&);
-
-struct Entry {
-  ManifoldFn manifold = nullptr;
-  OverlapFn overlap = nullptr;
-  bool flip = false;  // registered for (b, a): call with the arguments swapped
-};
+using detail::ManifoldFn;
+using detail::OverlapFn;
 
 constexpr int index(ShapeType t) {
   return static_cast<int>(t);
@@ -196,9 +189,7 @@ bool overlapSegments(const Shape& a, const Transform& xa, const Shape& b, const 
       .hit;
 }
 
-struct Table {
-  std::array<std::array<Entry, kShapeTypeCount>, kShapeTypeCount> e{};
-
+struct Table : detail::PairTable {
   constexpr void add(ShapeType a, ShapeType b, ManifoldFn m, OverlapFn o) {
     e[index(a)][index(b)] = {m, o, false};
     if (a != b) e[index(b)][index(a)] = {m, o, true};
@@ -232,39 +223,25 @@ struct Table {
   }
 };
 
-// Built at compile time: no initialisation guard on the per-pair path.
-constexpr Table kTable{};
-constexpr const Table& table() {
-  return kTable;
-}
+}  // namespace
 
-[[noreturn]] void unsupported(const char* what, ShapeType a, ShapeType b) {
+// Built at compile time (constinit): no initialisation guard on the per-pair path.
+constinit const detail::PairTable detail::kPairTable = Table{};
+
+void detail::unsupportedPair(const char* what, ShapeType a, ShapeType b) {
   throw UnsupportedPair(std::string(what) + ": no function registered for " + shapeTypeName(a) +
                         " vs " + shapeTypeName(b));
 }
 
-}  // namespace
-
-Manifold collide(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB,
-                 float margin) {
-  const Entry& e = table().e[index(a.type)][index(b.type)];
-  if (e.manifold == nullptr) unsupported("collide", a.type, b.type);
-  if (!e.flip) return e.manifold(a, xfA, b, xfB, margin);
-  Manifold m = e.manifold(b, xfB, a, xfA, margin);
+Manifold detail::flipped(Manifold m) {
   m.normal = -m.normal;
   for (int i = 0; i < m.pointCount; ++i)
     std::swap(m.points[i].anchorA, m.points[i].anchorB);
   return m;
 }
 
-bool testOverlap(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB) {
-  const Entry& e = table().e[index(a.type)][index(b.type)];
-  if (e.overlap == nullptr) unsupported("testOverlap", a.type, b.type);
-  return e.flip ? e.overlap(b, xfB, a, xfA) : e.overlap(a, xfA, b, xfB);
-}
-
 bool hasManifold(ShapeType a, ShapeType b) {
-  return table().e[index(a)][index(b)].manifold != nullptr;
+  return detail::kPairTable.e[index(a)][index(b)].manifold != nullptr;
 }
 
 }  // namespace rc

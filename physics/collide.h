@@ -5,6 +5,7 @@
 // rather than silently reporting no contact.
 #pragma once
 
+#include <array>
 #include <stdexcept>
 
 #include "physics/manifold.h"
@@ -16,16 +17,47 @@ class UnsupportedPair : public std::logic_error {
   using std::logic_error::logic_error;
 };
 
+namespace detail {
+using ManifoldFn = Manifold (*)(const Shape&, const Transform&, const Shape&, const Transform&,
+                                float margin);
+using OverlapFn = bool (*)(const Shape&, const Transform&, const Shape&, const Transform&);
+struct PairEntry {
+  ManifoldFn manifold = nullptr;
+  OverlapFn overlap = nullptr;
+  bool flip = false;  // registered for (b, a): call with the arguments swapped
+};
+struct PairTable {
+  std::array<std::array<PairEntry, kShapeTypeCount>, kShapeTypeCount> e{};
+};
+// Built at compile time in collide.cpp. The lookup is inline so that a call site makes one
+// indirect call, not two (a tenth of a chain-circle manifold).
+extern const PairTable kPairTable;
+[[noreturn]] void unsupportedPair(const char* what, ShapeType a, ShapeType b);
+Manifold flipped(Manifold m);
+}  // namespace detail
+
 // Contact manifold of any supported pair; normal from A to B. Points are reported while the
 // shapes are within `margin` (see manifold.h).
-Manifold collide(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB,
-                 float margin = kSpeculativeDistance);
+inline Manifold collide(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB,
+                        float margin = kSpeculativeDistance) {
+  const detail::PairEntry& e =
+      detail::kPairTable.e[static_cast<int>(a.type)][static_cast<int>(b.type)];
+  if (e.manifold == nullptr) detail::unsupportedPair("collide", a.type, b.type);
+  if (!e.flip) return e.manifold(a, xfA, b, xfB, margin);
+  return detail::flipped(e.manifold(b, xfB, a, xfA, margin));
+}
 
 // Do the shapes overlap (touching counts)? Closed forms for circles, the separating axis test
 // for sharp polygons, GJK for the rest. No bounding-circle test first: callers come through the
 // broadphase, whose AABB test is the cheap bound, and after it the circles cost more than they
 // saved (geometry_bench, overlap-prefilter rows: README, Performance).
-bool testOverlap(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB);
+inline bool testOverlap(const Shape& a, const Transform& xfA, const Shape& b,
+                        const Transform& xfB) {
+  const detail::PairEntry& e =
+      detail::kPairTable.e[static_cast<int>(a.type)][static_cast<int>(b.type)];
+  if (e.overlap == nullptr) detail::unsupportedPair("testOverlap", a.type, b.type);
+  return e.flip ? e.overlap(b, xfB, a, xfA) : e.overlap(a, xfA, b, xfB);
+}
 
 // True when collide() has a function for the pair.
 bool hasManifold(ShapeType a, ShapeType b);

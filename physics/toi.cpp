@@ -53,21 +53,27 @@ CastOutput shapeCast(const ShapeProxy& a, const Transform& xfA, Vec2 translation
   // apart: sharp shapes cast with target 0 would otherwise stop with their cores exactly
   // touching, where GJK has no normal to give. The tolerance is the oracle's (Box2D: 0.25 *
   // b2_linearSlop).
+  // The cores are measured, not the surfaces: a negative target (an overlap of the rounded
+  // surfaces, as a contact solver's slop asks for) is then a positive core distance, where the
+  // surface distance would stay 0 and never tell how deep.
   constexpr float kTolerance = 0.25f * kLinearSlop;
   constexpr int kMaxIterations = 40;
-  const float aim = std::max(0.0f, 0.5f * kTolerance - (target + a.radius + b.radius));
+  const float coreTarget = std::max(0.0f, target + a.radius + b.radius);
+  const float aim = std::max(0.0f, 0.5f * kTolerance - coreTarget);
+  ShapeProxy coreA = a, coreB = b;
+  coreA.radius = coreB.radius = 0.0f;
   CastOutput out;
   SimplexCache cache;
   float t = 0.0f;
   for (int iter = 0; iter < kMaxIterations; ++iter) {
     Transform at{mulAdd(xfA.p, t, translation), xfA.q};
-    DistanceOutput dist = shapeDistance(a, at, b, xfB, &cache);
+    DistanceOutput dist = shapeDistance(coreA, at, coreB, xfB, &cache);
     out.iterations = iter + 1;
-    float gap = dist.distance - target;
+    float gap = dist.distance - coreTarget;
     if (gap < kTolerance) {
       out.hit = true;
       out.fraction = t;
-      out.point = dist.pointB;
+      out.point = mulSub(dist.pointB, b.radius, dist.normal);  // on B's rounded surface
       // B's surface normal, towards A. Only a cast that starts in contact can have touching
       // cores (no normal): any direction out of B will do there, the reverse of the motion is
       // the natural one.

@@ -23,7 +23,9 @@ CastOutput sweptCircles(Vec2 centerA, float radiusA, Vec2 moveA, Vec2 centerB, f
                         Vec2 moveB);
 
 // Shape A moved by translation (world frame) against fixed shape B. Stops when the surfaces are
-// within `target` of each other (default: touching within the 0.25 * slop tolerance).
+// within `target` of each other (default: touching within the 0.25 * slop tolerance); a
+// negative target asks for that much overlap of the rounded surfaces (at most rA + rB: the
+// cores touching).
 // The normal points from B towards A at the hit (the surface normal of B the mover hits). The
 // hit is reported up to 0.25 * slop before touching (never after), so the cores are apart and
 // the normal is that of the closest features. A cast that starts in contact hits at fraction 0;

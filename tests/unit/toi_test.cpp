@@ -316,6 +316,23 @@ TEST(ShapeCast, CircleAgainstSegment) {
   expectVecNear(o.point, {3, 0}, 1e-5f, "point");
 }
 
+TEST(ShapeCast, NegativeTargetAsksForOverlap) {
+  // Circles r 0.5, A from (-3, 0) by (4, 0) against B at the origin, asked to overlap 5 mm: the
+  // centres stop 0.995 apart, t = (3 - 0.995) / 4 = 0.50125, no later, at most the tolerance
+  // (0.25 slop of motion) earlier. The point is on B's surface, the normal B's towards A.
+  // (The surfaces' distance is 0 once they overlap: a cast measured on it never hit.)
+  const rc::ShapeProxy circle = proxyOf(rc::makeCircle({}, 0.5f));
+  for (float target : {-0.005f, -0.5f, -0.99f}) {
+    rc::CastOutput o = rc::shapeCast(circle, {{-3, 0}, {}}, {4, 0}, circle, {}, target);
+    ASSERT_TRUE(o.hit) << target;
+    const float exact = (3.0f - (1.0f + target)) / 4.0f;
+    EXPECT_LE(o.fraction, exact + 1e-6f) << target;
+    EXPECT_GE(o.fraction, exact - kTol / 4.0f) << target;
+    expectVecNear(o.normal, {-1, 0}, 1e-5f, "normal");
+    expectVecNear(o.point, {-0.5f, 0}, 1e-5f, "point");
+  }
+}
+
 TEST(ShapeCast, CircleAgainstBox) {
   // Circle r 0.5 from (-3, 0.2) by (4, 0) against the box |x|, |y| <= 1: the centre stops at
   // x = -1.5, t = 1.5 / 4 = 0.375. Normal -x, contact (-1, 0.2).

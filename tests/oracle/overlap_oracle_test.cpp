@@ -168,9 +168,12 @@ double polygonArea(const rc::Polygon& p) {
 // One shape of the kind with a Box2D twin (capsules have none and need none: see the top).
 rc::Shape drawShape(rc::Random& rng, Kind kind, Box2DShape* twin) {
   for (;;) {
-    rc::Shape s = kind == Kind::chainLink
-                      ? rc::Shape(rc::testing::randomChainLink(rng, rng.below(2) == 0))
-                      : rc::testing::randomShape(rng, kind);
+    if (kind == Kind::chainLink) {
+      const rc::Shape link(rc::testing::randomChainLink(rng, rng.below(2) == 0));
+      if (rc::testing::toB2(link, twin)) return link;
+      continue;
+    }
+    const rc::Shape s = rc::testing::randomShape(rng, kind);
     if (s.type == rc::ShapeType::polygon && polygonArea(s.polygon) < kMinTwinArea) continue;
     if (isCapsule(kind) || rc::testing::toB2(s, twin)) return s;
     // Box2D's hull of this point cloud has another vertex count: draw again.

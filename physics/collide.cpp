@@ -155,10 +155,12 @@ bool overlapPolygonCircle(const Shape& a, const Transform& xa, const Shape& b,
   if (u >= lengthSquared(e)) return distanceSquared(c, v2) <= r * r;
   return true;  // beside the face, and maxSep <= r
 }
+// A segment or a chain link (overlap ignores sidedness, as Box2D's b2TestOverlap does).
 bool overlapSegmentCircle(const Shape& a, const Transform& xa, const Shape& b,
                           const Transform& xb) {
+  const Segment& g = a.type == ShapeType::segment ? a.segment : a.chainSegment.segment;
   Vec2 c = invApply(xa, apply(xb, b.circle.center));
-  Vec2 p = a.segment.point1, e = a.segment.point2 - p;
+  Vec2 p = g.point1, e = g.point2 - p;
   float u = std::clamp(dot(c - p, e) / lengthSquared(e), 0.0f, 1.0f);
   return distanceSquared(c, mulAdd(p, u, e)) <= b.circle.radius * b.circle.radius;
 }
@@ -210,7 +212,8 @@ struct Table : detail::PairTable {
     add(ShapeType::box, ShapeType::circle, boxCircle, overlapBoxCircle);
     add(ShapeType::polygon, ShapeType::circle, polygonCircle, overlapPolygonCircle);
     add(ShapeType::segment, ShapeType::circle, segmentCircle, overlapSegmentCircle);
-    add(ShapeType::chainSegment, ShapeType::circle, collideChainSegmentAndCircleShapes, overlapGjk);
+    add(ShapeType::chainSegment, ShapeType::circle, collideChainSegmentAndCircleShapes,
+        overlapSegmentCircle);
     add(ShapeType::box, ShapeType::polygon, collideHulls, overlapSharpPolygons);
     add(ShapeType::segment, ShapeType::polygon, collideHulls, overlapSharpPolygons);
     add(ShapeType::segment, ShapeType::box, collideHulls, overlapSharpPolygons);

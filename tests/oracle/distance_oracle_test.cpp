@@ -160,20 +160,8 @@ TEST_P(ShapePairs, AgreeWithBox2D) {
       ours = rc::shapeDistance(pa, xfA, pb, xfB);
     }
 
-    b2DistanceInput input;
-    rc::testing::Box2DProxy qa, qb;  // input.proxyA/B point into these
-    qa.set(pa);
-    qb.set(pb);
-    input.proxyA = qa.proxy;
-    input.proxyB = qb.proxy;
-    input.transformA = rc::testing::toB2(xfA);
-    input.transformB = rc::testing::toB2(xfB);
-    input.useRadii = true;
-    b2SimplexCache cache;
-    cache.count = 0;
-    cache.metric = 0.0f;
-    b2DistanceOutput theirs;
-    b2Distance(&theirs, &cache, &input);
+    const b2DistanceOutput theirs =
+        rc::testing::box2dDistance(pa, rc::testing::toB2(xfA), pb, rc::testing::toB2(xfB), true);
 
     auto fail = [&](const std::string& what) {
       if (failures < 5) {

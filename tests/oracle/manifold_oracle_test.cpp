@@ -69,21 +69,8 @@ struct CoreDistance {
 };
 CoreDistance coreDistance(const rc::Shape& a, const b2Transform& xa, const rc::Shape& b,
                           const b2Transform& xb) {
-  rc::ShapeProxy pa = rc::makeProxy(a), pb = rc::makeProxy(b);
-  pa.radius = pb.radius = 0.0f;
-  rc::testing::Box2DProxy qa, qb;
-  qa.set(pa);
-  qb.set(pb);
-  b2DistanceInput in;
-  in.proxyA = qa.proxy;
-  in.proxyB = qb.proxy;
-  in.transformA = xa;
-  in.transformB = xb;
-  in.useRadii = false;
-  b2SimplexCache cache;
-  cache.count = 0;
-  b2DistanceOutput out;
-  b2Distance(&out, &cache, &in);
+  const b2DistanceOutput out =
+      rc::testing::box2dDistance(rc::makeProxy(a), xa, rc::makeProxy(b), xb, false);
   Vec2 d{out.pointB.x - out.pointA.x, out.pointB.y - out.pointA.y};
   return {out.distance, out.distance > 0.0f ? rc::normalize(d) : Vec2{}};
 }

@@ -239,20 +239,8 @@ Case drawCase(std::uint64_t seed, Kind ka, Kind kb, Box2DShape* ta, Box2DShape* 
 bool box2dOverlap(const Case& c, bool viaProxies, const Box2DShape& ta, const Box2DShape& tb) {
   const b2Transform xa = rc::testing::toB2(c.xa), xb = rc::testing::toB2(c.xb);
   if (!viaProxies) return b2TestOverlap(ta.get(), 0, tb.get(), 0, xa, xb);
-  rc::testing::Box2DProxy qa, qb;  // input.proxyA/B point into these
-  qa.set(rc::makeProxy(c.a));
-  qb.set(rc::makeProxy(c.b));
-  b2DistanceInput input;
-  input.proxyA = qa.proxy;
-  input.proxyB = qb.proxy;
-  input.transformA = xa;
-  input.transformB = xb;
-  input.useRadii = true;
-  b2SimplexCache cache;
-  cache.count = 0;
-  cache.metric = 0.0f;
-  b2DistanceOutput out;
-  b2Distance(&out, &cache, &input);
+  const b2DistanceOutput out =
+      rc::testing::box2dDistance(rc::makeProxy(c.a), xa, rc::makeProxy(c.b), xb, true);
   return out.distance < 10.0f * b2_epsilon;  // b2TestOverlap's rule
 }
 

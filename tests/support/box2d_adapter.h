@@ -116,6 +116,27 @@ struct Box2DProxy {
   }
 };
 
+// b2Distance between our proxies (the same core points and radii), with a cold simplex cache:
+// the oracles' independent distance.
+inline b2DistanceOutput box2dDistance(const ShapeProxy& a, const b2Transform& xfA,
+                                      const ShapeProxy& b, const b2Transform& xfB, bool useRadii) {
+  Box2DProxy qa, qb;  // input.proxyA/B point into these
+  qa.set(a);
+  qb.set(b);
+  b2DistanceInput input;
+  input.proxyA = qa.proxy;
+  input.proxyB = qb.proxy;
+  input.transformA = xfA;
+  input.transformB = xfB;
+  input.useRadii = useRadii;
+  b2SimplexCache cache;
+  cache.count = 0;
+  cache.metric = 0.0f;
+  b2DistanceOutput out;
+  b2Distance(&out, &cache, &input);
+  return out;
+}
+
 // The same motion: both engines interpolate centre and angle linearly in t (Box2D builds the
 // rotation with the C library's sinf/cosf, ours with rc::sincos; they differ by ~1e-7).
 inline b2Sweep toB2(const Sweep& s) {

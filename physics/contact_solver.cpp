@@ -139,7 +139,13 @@ void solveBatch(Batch& c, SolverBody* bodies, const ContactSoftness& soft, bool 
     const M apart = s > 0.0f;
     isSoft[k] = ~apart & (s <= -kLinearSlop) & biasLanes;
     const F push = vmax(soft.biasRate * s, splat(-soft.maxPushout));
-    bias[k] = select(apart, s * soft.invH, select(isSoft[k], push, F{}));
+    // Inside the slop, rigid, but pushed out towards half of it at the soft bias rate (the relax
+    // pass takes the push's velocity back out): what a stack took in while it settled comes back
+    // out, where a rigid contact alone keeps it (base-40 pyramid's top 0.074 -> 0.046 m below
+    // its exact height after 1000 steps). The price: a tall stack sleeps later (the base-40
+    // pyramid with sleeping on averages 358 us a step over 1000 steps, was 144).
+    const F settle = vmin(soft.biasRate * (s + 0.5f * kLinearSlop), F{});
+    bias[k] = select(apart, s * soft.invH, select(isSoft[k], push, select(biasLanes, settle, F{})));
     massScale[k] = select(isSoft[k], splat(soft.massScale), splat(1.0f));
     impulseScale[k] = select(isSoft[k], splat(soft.impulseScale), F{});
   }

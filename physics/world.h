@@ -32,7 +32,8 @@
 // when pushing overlapping bodies apart (the push-out speed is capped and removed by relax), and
 // substeps keep the integrator's accuracy between contacts. Two additions of ours: a contact
 // within the linear slop is rigid (no softness), so a stack carries its load without sinking
-// (a soft spring must compress to push back: 19 cm at the top of a 40-box pyramid); and the
+// (a soft spring must compress to push back: 19 cm at the top of a 40-box pyramid), and is
+// pushed out towards half the slop, so what it took in while settling comes back out; and the
 // two points of a manifold are solved together (a 2x2 complementarity problem), so that a
 // symmetric stack stays symmetric.
 //

@@ -924,17 +924,8 @@ void applyImpulse(const Constraint& cc, const Point& p, Vec2 P, Vec2& vA, float&
 
 void World::accelerations(std::span<const double> q, std::span<const float> v, float t,
                           std::span<float> a) {
-  for (std::size_t s = 0; s < static_cast<std::size_t>(awakeCount_); ++s) {
-    const Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
-    const std::size_t i = 3 * s;
-    if (b.type != BodyType::dynamicBody) {
-      a[i] = a[i + 1] = a[i + 2] = 0.0f;
-      continue;
-    }
-    a[i] = b.gravityScale * def_.gravity.x + b.invMass * b.force.x;
-    a[i + 1] = b.gravityScale * def_.gravity.y + b.invMass * b.force.y;
-    a[i + 2] = b.invInertia * b.torque;
-  }
+  // The step's constant part (gathered in solve(): gravity, forces, torques), then the fields.
+  std::copy_n(baseAccel_.begin(), 3 * static_cast<std::size_t>(awakeCount_), a.begin());
   if (!fields_.empty()) {
     ForceStage stage(*this, q, v, a, t);
     for (ForceField& field : fields_)
@@ -1072,12 +1063,24 @@ void World::solve(float dt) {
   startCenter_.resize(2 * slots);
   startAngle_.resize(slots);
   slotRound_.resize(slots);
+  baseAccel_.resize(3 * slots);
   solverBodies_.assign(slots + 1, SolverBody{});  // the last: the null body
   for (std::size_t s = 0; s < slots; ++s) {
+    const Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
     startCenter_[2 * s] = q_[3 * s];
     startCenter_[2 * s + 1] = q_[3 * s + 1];
     startAngle_[s] = q_[3 * s + 2];
-    slotRound_[s] = bodies_[static_cast<std::size_t>(slotBody_[s])].round;
+    slotRound_[s] = b.round;
+    // Gravity, force and torque do not change during the step: gathered once here, copied out
+    // at every stage (the per-stage walk over the bodies was 8% of an arena step).
+    float* a = &baseAccel_[3 * s];
+    if (b.type == BodyType::dynamicBody) {
+      a[0] = b.gravityScale * def_.gravity.x + b.invMass * b.force.x;
+      a[1] = b.gravityScale * def_.gravity.y + b.invMass * b.force.y;
+      a[2] = b.invInertia * b.torque;
+    } else {
+      a[0] = a[1] = a[2] = 0.0f;
+    }
   }
 
   const float h = dt / static_cast<float>(def_.substeps);

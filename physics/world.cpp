@@ -772,6 +772,20 @@ void World::step(float dt) {
 }
 
 void World::refitBody(Body& b, Vec2 displacement) {
+  if (b.round && b.slot >= 0) {
+    // Circles about the centre of mass: their box is the centre (kept in double) plus and minus
+    // the radius, with no rotation and no dispatch on the shape type (computeAABB was 6% of a
+    // 5000-circle arena step).
+    const auto i = 3 * static_cast<std::size_t>(b.slot);
+    const Vec2 c{static_cast<float>(q_[i]), static_cast<float>(q_[i + 1])};
+    for (std::int32_t s : b.shapes) {
+      const ShapeRecord& r = shapes_[static_cast<std::size_t>(s)];
+      const float radius = r.shape.circle.radius;
+      broadphase_.moveProxy(r.proxy, {{c.x - radius, c.y - radius}, {c.x + radius, c.y + radius}},
+                            displacement);
+    }
+    return;
+  }
   for (std::int32_t s : b.shapes) {
     const ShapeRecord& r = shapes_[static_cast<std::size_t>(s)];
     broadphase_.moveProxy(r.proxy, computeAABB(r.shape, b.xf), displacement);

@@ -721,31 +721,31 @@ Manifold collideChainSegmentAndCircleShapes(const Shape& a, const Transform& xfA
 Manifold collideChainSegment(const ChainSegment& a, const Transform& xfA, const Shape& b,
                              const Transform& xfB, float margin) {
   const Transform rel = invMul(xfA, xfB);
-  if (b.type == ShapeType::box) {
-    // The same for a box: its extent along the normal from its centre and half extents.
-    const Vec2 p = a.segment.point1, e = a.segment.point2 - p, n = rightPerp(e);
-    const Vec2 nB = invRotate(rel.q, n);
-    const float mid = dot(n, rel.p - p) + dot(nB, b.box.center);
-    const float half =
-        std::fabs(nB.x) * b.box.halfExtents.x + std::fabs(nB.y) * b.box.halfExtents.y;
-    const float reach2 = margin * margin * lengthSquared(e);
-    const float front = mid - half, back = mid + half;
-    if ((front > 0.0f && front * front > reach2) || (back < 0.0f && back * back > reach2))
-      return noContact();
-  } else if (b.type == ShapeType::polygon) {
-    // The link's line first, with the polygon where it is (one rotation of the line's normal
-    // instead of moving every point and normal of the polygon): a polygon wholly farther than
-    // the margin on either side of the line touches nothing.
+  if (b.type == ShapeType::box || b.type == ShapeType::polygon) {
+    // The link's line first, with the shape where it is (one rotation of the line's normal
+    // instead of moving every point and normal of the shape): a shape wholly farther than the
+    // margin on either side of the line touches nothing.
     const Vec2 p = a.segment.point1, e = a.segment.point2 - p, n = rightPerp(e);  // |n| = |e|
     const Vec2 nB = invRotate(rel.q, n);
-    const float offset = dot(n, rel.p - p);
-    float lo = dot(nB, b.polygon.vertices[0]), hi = lo;
-    for (int i = 1; i < b.polygon.count; ++i) {
-      const float h = dot(nB, b.polygon.vertices[i]);
-      lo = std::min(lo, h);
-      hi = std::max(hi, h);
+    float lo, hi, radius;
+    if (b.type == ShapeType::box) {
+      const float mid = dot(nB, b.box.center);
+      const float half =
+          std::fabs(nB.x) * b.box.halfExtents.x + std::fabs(nB.y) * b.box.halfExtents.y;
+      lo = mid - half;
+      hi = mid + half;
+      radius = 0.0f;
+    } else {
+      lo = hi = dot(nB, b.polygon.vertices[0]);
+      for (int i = 1; i < b.polygon.count; ++i) {
+        const float h = dot(nB, b.polygon.vertices[i]);
+        lo = std::min(lo, h);
+        hi = std::max(hi, h);
+      }
+      radius = b.polygon.radius;
     }
-    const float reach = margin + b.polygon.radius;
+    const float offset = dot(n, rel.p - p);
+    const float reach = margin + radius;
     const float reach2 = reach * reach * lengthSquared(e);
     const float front = offset + lo, back = offset + hi;
     if ((front > 0.0f && front * front > reach2) || (back < 0.0f && back * back > reach2))
@@ -768,8 +768,8 @@ Manifold collideChainSegment(const ChainSegment& a, const Transform& xfA, const 
   if (hb.count > 1 && (m.id[0] & 0xC700) == 0x0100) {
     // The link's back face (reference face 1 of its two-point hull; a point shape's contacts
     // have ids of their own, and never take the back face of a link they are in front of):
-    // that push would drive the
-    // shape through the link to the side it is not on. The link's front face decides instead.
+    // that push would drive the shape through the link to the side it is not on. The link's
+    // front face decides instead.
     m.count = 0;
     if (!clipToFace(ha, 0, hb, false, margin, m) || m.count == 0) return noContact();
   }

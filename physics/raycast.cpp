@@ -66,18 +66,6 @@ void keepCloser(CastOutput& best, const CastOutput& c) {
 // be that end's disc (the disc fills the band's cross-section at the end). One division, at most
 // one disc: a third of casting both discs and both sides. With insideCheck, an origin inside
 // reports fraction 0 against the ray (raycast.h).
-CastOutput castCapsule(Vec2 a, Vec2 b, float r, const RayCastInput& in, bool insideCheck);
-
-// A translation whose squared length overflows is cast shortened by an exact power of two (and
-// the fraction scaled back): the same ray, the same point.
-CastOutput castCapsuleScaled(Vec2 a, Vec2 b, float r, const RayCastInput& in, bool insideCheck) {
-  if (std::isfinite(lengthSquared(in.translation))) return castCapsule(a, b, r, in, insideCheck);
-  RayCastInput shorter{in.origin, 0x1p-70f * in.translation, 0x1p70f * in.maxFraction};
-  CastOutput out = castCapsule(a, b, r, shorter, insideCheck);
-  out.fraction *= 0x1p-70f;
-  return out;
-}
-
 CastOutput castCapsule(Vec2 a, Vec2 b, float r, const RayCastInput& in, bool insideCheck) {
   const Vec2 e = b - a;
   const float len2 = lengthSquared(e);
@@ -105,6 +93,17 @@ CastOutput castCapsule(Vec2 a, Vec2 b, float r, const RayCastInput& in, bool ins
   if (s > len) return castDisc(b, r, in);
   const Vec2 n = qp > 0.0f ? leftPerp(u) : rightPerp(u);
   return hitAt(n, mulAdd(in.origin, t, d), t);
+}
+
+// Runs cast on the ray, shortened by an exact power of two (and the fraction scaled back) when
+// the translation's squared length overflows: the same ray, the same point. Checked once per
+// cast, not once per piece of a shape.
+template <class Cast>
+CastOutput castFiniteLength(const RayCastInput& in, Cast cast) {
+  if (std::isfinite(lengthSquared(in.translation))) return cast(in);
+  CastOutput out = cast({in.origin, 0x1p-70f * in.translation, 0x1p70f * in.maxFraction});
+  out.fraction *= 0x1p-70f;
+  return out;
 }
 
 }  // namespace
@@ -170,10 +169,13 @@ CastOutput castBox(const Box& s, const RayCastInput& in) {
 [[gnu::noinline]] CastOutput castRoundedPolygon(const Polygon& s, const RayCastInput& in) {
   if (containsPoint(Shape(s), Transform{}, in.origin)) return startsInside(in);
   if (lengthSquared(in.translation) == 0.0f) return {};
-  CastOutput best;
-  for (int i = 0; i < s.count; ++i)
-    keepCloser(best, castCapsuleScaled(s.vertices[i], s.vertices[nextIndex(i, s.count)], s.radius,
-                                       in, false));
+  CastOutput best = castFiniteLength(in, [&](const RayCastInput& ray) {
+    CastOutput closest;
+    for (int i = 0; i < s.count; ++i)
+      keepCloser(closest, castCapsule(s.vertices[i], s.vertices[nextIndex(i, s.count)], s.radius,
+                                      ray, false));
+    return closest;
+  });
   if (!best.hit) return best;
   // The normal from the hit's closest feature of the core, not from the capsule that won: where
   // a flat side meets a corner's arc the two entries are within a rounding of each other, and
@@ -241,7 +243,9 @@ CastOutput castPolygon(const Polygon& s, const RayCastInput& in) {
 }  // namespace
 
 CastOutput rayCast(const Capsule& s, const RayCastInput& in) {
-  return castCapsuleScaled(s.center1, s.center2, s.radius, in, true);
+  return castFiniteLength(in, [&](const RayCastInput& ray) {
+    return castCapsule(s.center1, s.center2, s.radius, ray, true);
+  });
 }
 
 CastOutput rayCast(const Segment& s, const RayCastInput& in, bool oneSided) {

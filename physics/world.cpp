@@ -59,6 +59,18 @@ float thickness(const Shape& s) {
   return 0.0f;
 }
 
+// A body's extents for continuous collision, widened by one of its shapes: the thinnest shape's
+// half-thickness (a lower bound) and the farthest reach from the body origin.
+void widenExtents(float& minExtent, float& maxExtent, const Shape& s, const BoundingCircle& bound) {
+  minExtent = std::min(minExtent, thickness(s));
+  maxExtent = std::max(maxExtent, length(bound.center) + bound.radius);
+}
+
+// A circle about the body's centre of mass: a body of nothing else is round (Body::round).
+bool centredCircle(const Shape& s, Vec2 localCenter) {
+  return s.type == ShapeType::circle && s.circle.center == localCenter;
+}
+
 std::uint64_t pairKey(std::int32_t a, std::int32_t b) {
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
          static_cast<std::uint32_t>(b);
@@ -446,9 +458,8 @@ ShapeId World::createShape(BodyId bodyId, const Shape& shape, const ShapeDef& de
       b.maxExtent = 0.0f;
       b.round = true;
     }
-    b.minExtent = std::min(b.minExtent, thickness(shape));
-    b.maxExtent = std::max(b.maxExtent, length(r.bound.center) + r.bound.radius);
-    b.round = b.round && shape.type == ShapeType::circle && shape.circle.center == b.localCenter;
+    widenExtents(b.minExtent, b.maxExtent, shape, r.bound);
+    b.round = b.round && centredCircle(shape, b.localCenter);
   }
   if (b.slot >= 0) pendingRefit_.push_back(bodyId.index);
   return {index, 1};
@@ -457,22 +468,18 @@ ShapeId World::createShape(BodyId bodyId, const Shape& shape, const ShapeDef& de
 bool World::isRound(const Body& b) const {
   if (b.shapes.empty()) return false;
   for (std::int32_t s : b.shapes) {
-    const Shape& shape = shapes_[static_cast<std::size_t>(s)].shape;
-    if (shape.type != ShapeType::circle || shape.circle.center != b.localCenter) return false;
+    if (!centredCircle(shapes_[static_cast<std::size_t>(s)].shape, b.localCenter)) return false;
   }
   return true;
 }
 
 void World::updateMass(Body& b) {
   b.mass = b.invMass = b.inertia = b.invInertia = 0.0f;
-  // Extents for continuous collision: the thinnest shape's half-thickness (a lower bound),
-  // and the farthest reach from the body origin.
   b.minExtent = std::numeric_limits<float>::max();
   b.maxExtent = 0.0f;
   for (std::int32_t s : b.shapes) {
     const ShapeRecord& r = shapes_[static_cast<std::size_t>(s)];
-    b.minExtent = std::min(b.minExtent, thickness(r.shape));
-    b.maxExtent = std::max(b.maxExtent, length(r.bound.center) + r.bound.radius);
+    widenExtents(b.minExtent, b.maxExtent, r.shape, r.bound);
   }
   if (b.type != BodyType::dynamicBody) {
     b.localCenter = {};

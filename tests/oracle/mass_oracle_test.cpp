@@ -235,6 +235,26 @@ double boxRoundingBound(float hw, float hh, Vec2 c) {
   return 4 * FLT_EPSILON * m * (1.0 / hw + 1.0 / hh);
 }
 
+// Ours against Box2D's ComputeMass for a box, the part Boxes and OrientedBoxes share: mass within
+// 1e-5 plus massSlack relative; centre within 1e-5 of the box's reach `far`; inertia, after
+// Box2D's is shifted to the centre, within 1e-5 plus inertiaSlack of Box2D's inertia about the
+// origin (the shift cancels digits of its float result: see Boxes).
+struct Box2DWorsts {
+  Worst mass, inertia, centre, cancelled;
+};
+void expectBoxNearBox2D(const rc::MassData& ours, const b2MassData& md, float density, double far,
+                        double massSlack, double inertiaSlack, Box2DWorsts& worst, int i) {
+  worst.mass.see(relErr(ours.mass, md.mass));
+  EXPECT_LE(relErr(ours.mass, md.mass), 1e-5 + massSlack) << "mass vs box2d case " << i;
+  worst.centre.see(rc::length(ours.center - Vec2{md.center.x, md.center.y}) / far);
+  EXPECT_LE(rc::length(ours.center - Vec2{md.center.x, md.center.y}), 1e-5 * far) << i;
+  double shifted = static_cast<double>(fromBox2D(md, density).inertia * density);
+  worst.inertia.see(std::fabs(ours.inertia - shifted) / md.I);
+  worst.cancelled.see(relErr(ours.inertia, shifted));
+  EXPECT_LE(std::fabs(ours.inertia - shifted), (1e-5 + inertiaSlack) * md.I)
+      << "inertia vs box2d case " << i;
+}
+
 TEST(MassOracle, Boxes) {
   // rc::makeBox keeps (hw, hh, centre) and integrates them in closed form; Box2D's SetAsBox
   // stores four float vertices and integrates those, so the two differ by Box2D's vertex
@@ -244,7 +264,8 @@ TEST(MassOracle, Boxes) {
   // the origin (up to 3% relative here); there the comparison is to 1e-5 of Box2D's inertia
   // about the origin (its own precision), and the closed form holds ours to 1e-5 relative.
   rc::Random rng(102);
-  Worst massClosed, inertiaClosed, massBox2D, inertiaBox2D, centre, stored, cancelled;
+  Worst massClosed, inertiaClosed, stored;
+  Box2DWorsts box2d;
   int beyond = 0;  // cases Box2D's own vertex rounding put beyond 1e-5 of the ideal box
   for (int i = 0; i < 100000; ++i) {
     Vec2 c = rng.inBox({-10, -10}, {10, 10});
@@ -269,24 +290,16 @@ TEST(MassOracle, Boxes) {
     double storedInertia = relErr(static_cast<double>(boxB2.inertia * density), inertia);
     stored.see(std::max(storedMass, storedInertia / 3) / boxRoundingBound(hw, hh, c));
     beyond += std::max(storedMass, storedInertia) > 1e-5 ? 1 : 0;
-    massBox2D.see(relErr(ours.mass, md.mass));
-    EXPECT_LE(relErr(ours.mass, md.mass), 1e-5 + storedMass) << "mass vs box2d case " << i;
-    double far = reach(b.m_vertices, b.m_count);
-    centre.see(rc::length(ours.center - Vec2{md.center.x, md.center.y}) / far);
-    EXPECT_LE(rc::length(ours.center - Vec2{md.center.x, md.center.y}), 1e-5 * far) << i;
-    double shifted = static_cast<double>(fromBox2D(md, density).inertia * density);
-    inertiaBox2D.see(std::fabs(ours.inertia - shifted) / md.I);
-    cancelled.see(relErr(ours.inertia, shifted));
-    EXPECT_LE(std::fabs(ours.inertia - shifted), (1e-5 + storedMass + storedInertia) * md.I)
-        << "inertia vs box2d case " << i;
+    expectBoxNearBox2D(ours, md, density, reach(b.m_vertices, b.m_count), storedMass,
+                       storedMass + storedInertia, box2d, i);
   }
   EXPECT_LE(stored.value, 1.0);  // Box2D's vertices within the rounding bound of the ideal box
   RecordProperty("worst_mass_vs_closed_form", massClosed.text());
   RecordProperty("worst_inertia_vs_closed_form", inertiaClosed.text());
-  RecordProperty("worst_mass_vs_box2d", massBox2D.text());
-  RecordProperty("worst_inertia_vs_box2d_over_origin_inertia", inertiaBox2D.text());
-  RecordProperty("worst_inertia_vs_box2d_shifted", cancelled.text());
-  RecordProperty("worst_centre_over_reach", centre.text());
+  RecordProperty("worst_mass_vs_box2d", box2d.mass.text());
+  RecordProperty("worst_inertia_vs_box2d_over_origin_inertia", box2d.inertia.text());
+  RecordProperty("worst_inertia_vs_box2d_shifted", box2d.cancelled.text());
+  RecordProperty("worst_centre_over_reach", box2d.centre.text());
   RecordProperty("worst_box2d_vertex_rounding_over_bound", stored.text());
   RecordProperty("box2d_stored_box_beyond_1e-5", beyond);
 }
@@ -298,8 +311,8 @@ TEST(MassOracle, OrientedBoxes) {
   // difference between Box2D's stored vertices and ours (each rotates in its own float
   // arithmetic). Inertia against Box2D as in Boxes.
   rc::Random rng(103);
-  Worst massStored, inertiaStored, massClosed, inertiaClosed, massBox2D, inertiaBox2D, centre,
-      stored, cancelled;
+  Worst massStored, inertiaStored, massClosed, inertiaClosed, stored;
+  Box2DWorsts box2d;
   int beyond = 0;  // cases our vertex rounding put beyond 1e-5 of the ideal box
   for (int i = 0; i < 100000; ++i) {
     Vec2 c = rng.inBox({-10, -10}, {10, 10});
@@ -336,25 +349,17 @@ TEST(MassOracle, OrientedBoxes) {
     Ref boxB2 = exactPolygon(b.m_vertices, b.m_count);
     double apartMass = static_cast<double>(std::fabs(boxB2.mass - own.mass) / own.mass);
     double apartInertia = static_cast<double>(std::fabs(boxB2.inertia - own.inertia) / own.inertia);
-    massBox2D.see(relErr(ours.mass, md.mass));
-    EXPECT_LE(relErr(ours.mass, md.mass), 1e-5 + apartMass) << "mass vs box2d case " << i;
-    centre.see(rc::length(ours.center - Vec2{md.center.x, md.center.y}) / far);
-    EXPECT_LE(rc::length(ours.center - Vec2{md.center.x, md.center.y}), 1e-5 * far) << i;
-    double shifted = static_cast<double>(fromBox2D(md, density).inertia * density);
-    inertiaBox2D.see(std::fabs(ours.inertia - shifted) / md.I);
-    cancelled.see(relErr(ours.inertia, shifted));
-    EXPECT_LE(std::fabs(ours.inertia - shifted), (1e-5 + apartMass + apartInertia) * md.I)
-        << "inertia vs box2d case " << i;
+    expectBoxNearBox2D(ours, md, density, far, apartMass, apartMass + apartInertia, box2d, i);
   }
   EXPECT_LE(stored.value, 1.0);  // our vertices within the rounding bound of the ideal box
   RecordProperty("worst_mass_vs_stored_polygon", massStored.text());
   RecordProperty("worst_inertia_vs_stored_polygon", inertiaStored.text());
   RecordProperty("worst_mass_vs_closed_form", massClosed.text());
   RecordProperty("worst_inertia_vs_closed_form", inertiaClosed.text());
-  RecordProperty("worst_mass_vs_box2d", massBox2D.text());
-  RecordProperty("worst_inertia_vs_box2d_over_origin_inertia", inertiaBox2D.text());
-  RecordProperty("worst_inertia_vs_box2d_shifted", cancelled.text());
-  RecordProperty("worst_centre_over_reach", centre.text());
+  RecordProperty("worst_mass_vs_box2d", box2d.mass.text());
+  RecordProperty("worst_inertia_vs_box2d_over_origin_inertia", box2d.inertia.text());
+  RecordProperty("worst_inertia_vs_box2d_shifted", box2d.cancelled.text());
+  RecordProperty("worst_centre_over_reach", box2d.centre.text());
   RecordProperty("worst_vertex_rounding_over_bound", stored.text());
   RecordProperty("stored_box_beyond_1e-5", beyond);
 }

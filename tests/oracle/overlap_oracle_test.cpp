@@ -251,26 +251,14 @@ constexpr int kBox2DGjkIterationLimit = 20;
 // The iterations b2Distance took for the case, on the proxies b2TestOverlap builds
 // (b2DistanceProxy::Set on the twins) or, for capsule pairs, on ours.
 int box2dIterations(const Case& c, bool viaProxies, const Box2DShape& ta, const Box2DShape& tb) {
-  rc::testing::Box2DProxy qa, qb;
-  b2DistanceInput input;
-  if (viaProxies) {
-    qa.set(rc::makeProxy(c.a));
-    qb.set(rc::makeProxy(c.b));
-    input.proxyA = qa.proxy;
-    input.proxyB = qb.proxy;
-  } else {
-    input.proxyA.Set(ta.get(), 0);
-    input.proxyB.Set(tb.get(), 0);
-  }
-  input.transformA = rc::testing::toB2(c.xa);
-  input.transformB = rc::testing::toB2(c.xb);
-  input.useRadii = true;
-  b2SimplexCache cache;
-  cache.count = 0;
-  cache.metric = 0.0f;
-  b2DistanceOutput out;
-  b2Distance(&out, &cache, &input);
-  return out.iterations;
+  const b2Transform xa = rc::testing::toB2(c.xa), xb = rc::testing::toB2(c.xb);
+  if (viaProxies)
+    return rc::testing::box2dDistance(rc::makeProxy(c.a), xa, rc::makeProxy(c.b), xb, true)
+        .iterations;
+  b2DistanceProxy pa, pb;
+  pa.Set(ta.get(), 0);
+  pb.Set(tb.get(), 0);
+  return rc::testing::box2dDistance(pa, xa, pb, xb, true).iterations;
 }
 
 Core worldCore(const rc::Shape& s, const rc::Transform& xf) {

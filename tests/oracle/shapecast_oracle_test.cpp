@@ -140,16 +140,8 @@ struct CoreSample {
 
 CoreSample coreSample(const b2DistanceProxy& fixed, const rc::Transform& xfFixed,
                       const b2DistanceProxy& mover, const rc::Transform& xfMover) {
-  b2DistanceInput in;
-  in.proxyA = fixed;
-  in.proxyB = mover;
-  in.transformA = rc::testing::toB2(xfFixed);
-  in.transformB = rc::testing::toB2(xfMover);
-  in.useRadii = false;
-  b2SimplexCache cache;
-  cache.count = 0;
-  b2DistanceOutput out;
-  b2Distance(&out, &cache, &in);
+  const b2DistanceOutput out = rc::testing::box2dDistance(fixed, rc::testing::toB2(xfFixed), mover,
+                                                          rc::testing::toB2(xfMover), false);
   CoreSample s;
   s.distance = out.distance;
   s.onFixed = {out.pointA.x, out.pointA.y};

@@ -116,16 +116,14 @@ struct Box2DProxy {
   }
 };
 
-// b2Distance between our proxies (the same core points and radii), with a cold simplex cache:
-// the oracles' independent distance.
-inline b2DistanceOutput box2dDistance(const ShapeProxy& a, const b2Transform& xfA,
-                                      const ShapeProxy& b, const b2Transform& xfB, bool useRadii) {
-  Box2DProxy qa, qb;  // input.proxyA/B point into these
-  qa.set(a);
-  qb.set(b);
+// b2Distance between two Box2D proxies with a cold simplex cache: the oracles' independent
+// distance.
+inline b2DistanceOutput box2dDistance(const b2DistanceProxy& a, const b2Transform& xfA,
+                                      const b2DistanceProxy& b, const b2Transform& xfB,
+                                      bool useRadii) {
   b2DistanceInput input;
-  input.proxyA = qa.proxy;
-  input.proxyB = qb.proxy;
+  input.proxyA = a;
+  input.proxyB = b;
   input.transformA = xfA;
   input.transformB = xfB;
   input.useRadii = useRadii;
@@ -135,6 +133,15 @@ inline b2DistanceOutput box2dDistance(const ShapeProxy& a, const b2Transform& xf
   b2DistanceOutput out;
   b2Distance(&out, &cache, &input);
   return out;
+}
+
+// The same between our proxies (the same core points and radii).
+inline b2DistanceOutput box2dDistance(const ShapeProxy& a, const b2Transform& xfA,
+                                      const ShapeProxy& b, const b2Transform& xfB, bool useRadii) {
+  Box2DProxy qa, qb;  // the b2DistanceProxy objects point into these
+  qa.set(a);
+  qb.set(b);
+  return box2dDistance(qa.proxy, xfA, qb.proxy, xfB, useRadii);
 }
 
 // The same motion: both engines interpolate centre and angle linearly in t (Box2D builds the

@@ -45,6 +45,8 @@ constexpr const char* kSimUsage =
     "  --sheet FILE       with --frames: also a contact sheet of up to 24 of the frames\n"
     "  --video FILE       with --frames: also an MP4 (or a GIF, by the name) of the frames,\n"
     "                     if ffmpeg is installed; without it a warning, and the frames stay\n"
+    "  --profile          also print the step's phases, milliseconds per step on average\n"
+    "                     (after the summary line)\n"
     "Exit codes: 0 done, 1 bad scene or unwritable output, 2 bad command line.\n";
 
 int usageError(const std::string& what) {
@@ -122,7 +124,7 @@ int runSim(std::span<const std::string_view> args) {
   std::string scenePath, outPath, csvPath, trace, integrator, framesDir, sheetPath, videoPath;
   long steps = -1, every = 1;
   int width = 640, height = 360;
-  bool overlay = true;
+  bool overlay = true, profile = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string_view a = args[i];
     auto value = [&](std::string& into) {
@@ -153,6 +155,8 @@ int runSim(std::span<const std::string_view> args) {
       if (!value(videoPath)) return usageError("--video needs a file name");
     } else if (a == "--no-overlay") {
       overlay = false;
+    } else if (a == "--profile") {
+      profile = true;
     } else if (a == "--every") {
       std::string v;
       if (!value(v) || !whole(v, 1, every))
@@ -241,10 +245,18 @@ int runSim(std::span<const std::string_view> args) {
 #endif
     record(0);
     frame(0);
-    double total = 0;
+    rc::Profile sum;
     for (long k = 1; k <= steps; ++k) {
       built.world->step(scene.dt);
-      total += built.world->profile().total;
+      const rc::Profile& p = built.world->profile();
+      sum.updatePairs += p.updatePairs;
+      sum.narrowphase += p.narrowphase;
+      sum.solve += p.solve;
+      sum.continuous += p.continuous;
+      sum.refit += p.refit;
+      sum.sensors += p.sensors;
+      sum.sleep += p.sleep;
+      sum.total += p.total;
       record(k);
       frame(k);
       if (steps >= 10000 && k % (steps / 10) == 0)
@@ -266,8 +278,16 @@ int runSim(std::span<const std::string_view> args) {
     const SceneState state = captureState(scene, built, static_cast<int>(steps));
     if (!outPath.empty()) writeFileAtomically(outPath, stateToJson(state));
     if (!csvPath.empty()) writeFileAtomically(csvPath, csv);
+    const double perStep = steps > 0 ? 1.0 / static_cast<double>(steps) : 0.0;
     std::printf("steps %ld time %.6f hash %s ms_per_step %.4f\n", steps, state.time,
-                state.hash.c_str(), steps > 0 ? total / static_cast<double>(steps) : 0.0);
+                state.hash.c_str(), sum.total * perStep);
+    if (profile)
+      std::printf(
+          "profile ms_per_step update_pairs %.4f narrowphase %.4f solve %.4f continuous %.4f "
+          "refit %.4f sensors %.4f sleep %.4f total %.4f\n",
+          sum.updatePairs * perStep, sum.narrowphase * perStep, sum.solve * perStep,
+          sum.continuous * perStep, sum.refit * perStep, sum.sensors * perStep, sum.sleep * perStep,
+          sum.total * perStep);
     return 0;
   } catch (const SceneError& e) {
     std::fprintf(stderr, "ricochet sim: %s\n", e.what());

@@ -583,10 +583,93 @@ Manifold collideBoxAndCircle(const Box& a, const Transform& xfA, const Circle& b
   return toWorld(m, xfA, xfB);
 }
 
+namespace {
+
+// Two boxes at a relative rotation, in closed form: the separating axis test on the two boxes'
+// four axes (a box's extent along an axis is |c| hx + |s| hy), then the incident edge clipped
+// to the reference face in the reference box's own frame, where that face is axis-aligned. The
+// manifold is collideHulls' (same reference-face choice and hysteresis, feature ids and
+// contact points, up to rounding: unit test OrientedBoxesMatchTheHullPath); the cases where
+// the closest features are two corners (collideHulls asks GJK) go to collideHulls. Resting
+// boxes, a pyramid's contacts, took 68 ns through collideHulls.
+Manifold collideOrientedBoxes(const Box& a, const Transform& xfA, const Box& b,
+                              const Transform& xfB, const Transform& rel, float margin) {
+  // B's centre from A's and B's axes (c, s), (-s, c), in A's frame; A's centre in B's frame.
+  const Rot q = rel.q;
+  const Vec2 centreB = rel.p + rotate(q, b.center);
+  const Vec2 d = centreB - a.center, dB = invRotate(q, d);
+  const Vec2 hA = a.halfExtents, hB = b.halfExtents;
+  const float ac = std::fabs(q.c), as = std::fabs(q.s);
+  const float sepAx = std::fabs(d.x) - hA.x - (ac * hB.x + as * hB.y);
+  const float sepAy = std::fabs(d.y) - hA.y - (as * hB.x + ac * hB.y);
+  const float sepBx = std::fabs(dB.x) - hB.x - (ac * hA.x + as * hA.y);
+  const float sepBy = std::fabs(dB.y) - hB.y - (as * hA.x + ac * hA.y);
+  const float sepA = std::max(sepAx, sepAy), sepB = std::max(sepBx, sepBy);
+  if (sepA > margin || sepB > margin) return noContact();
+  // Prefer A's face unless B's is clearly better (collideLocal's hysteresis).
+  const bool flip = sepB > sepA + 0.1f * kLinearSlop;
+
+  // The reference box: half extents h, face normal sigma along axis k. The incident box in its
+  // frame: centre p, axes u = (c, s), v = (-s, c), half extents e.
+  const Vec2 h = flip ? hB : hA, e = flip ? hA : hB;
+  const Vec2 p = flip ? -dB : d;
+  const float c = q.c, s = flip ? -q.s : q.s;
+  const float sepX = flip ? sepBx : sepAx, sepY = flip ? sepBy : sepAy;
+  const int k = sepX > sepY ? 0 : 1, t = 1 - k;
+  const float sep = k == 0 ? sepX : sepY;
+  const float sigma = (k == 0 ? p.x : p.y) >= 0.0f ? 1.0f : -1.0f;
+  // A box's faces as collideHulls numbers them: 0 -y, 1 +x, 2 +y, 3 -x; corners 0 (-,-),
+  // 1 (+,-), 2 (+,+), 3 (-,+); face i runs from corner i to corner i + 1.
+  const int refFace = k == 0 ? (sigma > 0.0f ? 1 : 3) : (sigma > 0.0f ? 2 : 0);
+  // The incident face: the one whose normal (+-u, +-v) is most against the reference normal.
+  const float uk = k == 0 ? c : s, vk = k == 0 ? -s : c;
+  const int incFace =
+      std::fabs(uk) > std::fabs(vk) ? (sigma * uk < 0.0f ? 1 : 3) : (sigma * vk < 0.0f ? 2 : 0);
+  auto corner = [&](int i) {
+    const float sx = (i == 1 || i == 2) ? e.x : -e.x, sy = i >= 2 ? e.y : -e.y;
+    return Vec2{p.x + sx * c - sy * s, p.y + sx * s + sy * c};
+  };
+  auto along = [](Vec2 v, int axis) { return axis == 0 ? v.x : v.y; };
+  const int wid[2] = {incFace, nextIndex(incFace, 4)};
+  const Vec2 w[2] = {corner(wid[0]), corner(wid[1])};
+  const float u0 = along(w[0], t), u1 = along(w[1], t), lo = -along(h, t), hi = along(h, t);
+  // Closest features two corners (apart by more than a tenth of the slop, the deepest incident
+  // corner beside the face), or the incident edge wholly past an end of the face: GJK's cases.
+  const int deepest = sigma * along(w[0], k) <= sigma * along(w[1], k) ? 0 : 1;
+  const float ud = along(w[deepest], t);
+  if ((sep > 0.1f * kLinearSlop && (ud < lo || ud > hi)) || (u0 < lo && u1 < lo) ||
+      (u0 > hi && u1 > hi))
+    return collideHulls(Shape(a), xfA, Shape(b), xfB, margin);
+
+  Vec2 clipped[2] = {w[0], w[1]};
+  if (u0 != u1) {
+    auto at = [&](float u) { return lerp(w[0], w[1], (u - u0) / (u1 - u0)); };
+    if (u0 < lo) clipped[0] = at(lo);
+    if (u0 > hi) clipped[0] = at(hi);
+    if (u1 < lo) clipped[1] = at(lo);
+    if (u1 > hi) clipped[1] = at(hi);
+  }
+  Local m;
+  const Vec2 n = k == 0 ? Vec2{sigma, 0.0f} : Vec2{0.0f, sigma};
+  for (int j = 0; j < 2; ++j) {
+    const float core = sigma * along(clipped[j], k) - along(h, k);
+    if (core > margin) continue;
+    // Halfway between the incident point and the reference face, back in A's frame.
+    Vec2 point = mulAdd(clipped[j], -0.5f * core, n);
+    point = flip ? centreB + rotate(q, point) : a.center + point;
+    m.add(point, core,
+          static_cast<std::uint16_t>((flip ? 0x8000 : 0) | (refFace << 8) | (wid[j] << 4) | j));
+  }
+  m.normal = flip ? -rotate(q, n) : n;
+  return toWorld(m, xfA, xfB);
+}
+
+}  // namespace
+
 Manifold collideBoxes(const Box& a, const Transform& xfA, const Box& b, const Transform& xfB,
                       float margin) {
   Transform rel = invMul(xfA, xfB);
-  if (!rel.q.isIdentity()) return collideHulls(Shape(a), xfA, Shape(b), xfB, margin);
+  if (!rel.q.isIdentity()) return collideOrientedBoxes(a, xfA, b, xfB, rel, margin);
   // Aligned boxes: the separating axis is x or y, and the contact points are the ends of the
   // overlap of the two boxes' extents along the other axis.
   Vec2 cA = a.center, cB = rel.p + b.center;

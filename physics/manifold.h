@@ -56,7 +56,8 @@ Manifold collideSegmentAndCircle(const Segment& a, const Transform& xfA, const C
                                  const Transform& xfB, float margin = kSpeculativeDistance);
 Manifold collideBoxAndCircle(const Box& a, const Transform& xfA, const Circle& b,
                              const Transform& xfB, float margin = kSpeculativeDistance);
-// Falls back to the polygon path when the two boxes are not aligned.
+// Aligned boxes in closed form; turned ones by the hull path specialised to two boxes (the
+// same manifold as collideHulls, to the bit).
 Manifold collideBoxes(const Box& a, const Transform& xfA, const Box& b, const Transform& xfB,
                       float margin = kSpeculativeDistance);
 // General path: any two solid or segment shapes as rounded hulls.

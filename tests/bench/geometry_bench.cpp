@@ -169,6 +169,35 @@ Cases makeCases(Kind ka, Kind kb, uint64_t seed, Placement place = {}) {
   return cases;
 }
 
+// Boxes at rest on each other, as in a stack or pyramid: 1 m boxes, the upper one offset sideways
+// by up to 0.8 m, both tilted by up to 0.02 rad, the gap between them -5 mm to +5 mm (overlap
+// to Box2D's slop either way). Half the pairs side by side instead of one on the other. The
+// random boxes of makeCases are axis-aligned (the aligned fast path); these are what a settling
+// pyramid's contacts are.
+Cases makeRestingBoxes(uint64_t seed) {
+  rc::Random rng(seed);
+  Cases cases;
+  while (static_cast<int>(cases.size()) < kCases) {
+    auto c = std::make_unique<PairCase>();
+    c->a = rc::makeBox(0.5f, 0.5f);
+    c->b = rc::makeBox(0.5f, 0.5f);
+    const float gap = rng.uniform(-0.005f, 0.005f), offset = rng.uniform(-0.8f, 0.8f);
+    const Vec2 pb =
+        rng.uniform(0.0f, 1.0f) < 0.5f ? Vec2{offset, 1.0f + gap} : Vec2{1.0f + gap, 0.1f * offset};
+    c->xa = {{}, rc::Rot::fromAngle(rng.uniform(-0.02f, 0.02f))};
+    c->xb = {pb, rc::Rot::fromAngle(rng.uniform(-0.02f, 0.02f))};
+    c->pa = rc::makeProxy(c->a);
+    c->pb = rc::makeProxy(c->b);
+    if (!shapeToB2(c->a, &c->oa, &c->capsuleA) || !shapeToB2(c->b, &c->ob, &c->capsuleB)) continue;
+    c->ba = rc::testing::toB2(c->xa);
+    c->bb = rc::testing::toB2(c->xb);
+    c->qa.set(c->pa);
+    c->qb.set(c->pb);
+    cases.push_back(std::move(c));
+  }
+  return cases;
+}
+
 template <typename F>
 void registerPair(const std::string& name, const std::vector<std::unique_ptr<PairCase>>* cases, F f,
                   const std::string& label = {}) {
@@ -438,6 +467,8 @@ void registerAll() {
     manifoldRows(pairName(p), cases);
     overlapRows(pairName(p), cases);
   }
+
+  manifoldRows("resting_boxes", keep(makeRestingBoxes(900)));
 
   // Distance and time of impact work on proxies: capsules and rounded polygons too.
   const PairKind proxyPairs[] = {{Kind::circle, Kind::circle},   {Kind::box, Kind::circle},

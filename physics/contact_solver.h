@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <type_traits>
 
 #include "physics/math.h"
 
@@ -56,6 +57,8 @@ struct SolverBody {
   Vec2 dp{};
   Rot dq{};
 };
+// The solver loads and stores each 16-byte half whole (see contact_solver.cpp).
+static_assert(sizeof(SolverBody) == 32 && std::is_standard_layout_v<SolverBody>);
 
 // The soft contact (Catto, "Solver2D", 2024): a spring-damper of stiffness omega and damping
 // ratio zeta, written as a bias and a mass / impulse scale for an implicit step of size h.

@@ -1255,22 +1255,74 @@ void World::continuous() {
       q_[i + k] = startCenter_[2 * s + k] + t * (q_[i + k] - startCenter_[2 * s + k]);
     q_[i + 2] = startAngle_[s] + t * (q_[i + 2] - startAngle_[s]);
   };
-  for (std::size_t s = 0; s < static_cast<std::size_t>(awakeCount_); ++s) {
-    Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
-    if (b.type != BodyType::dynamicBody || b.shapes.empty()) continue;
-    const Sweep sweep = sweepOf(b);
+  auto fast = [&](const Body& b, const Sweep& sweep) {
+    if (b.type != BodyType::dynamicBody || b.shapes.empty()) return false;
     const float motion = length(sweep.c2 - sweep.c1) + std::fabs(sweep.a2 - sweep.a1) * b.maxExtent;
-    if (motion < 0.5f * b.minExtent) continue;
-    const Transform xf1 = sweepTransform(sweep, 0.0f), xf2 = sweepTransform(sweep, 1.0f);
+    return motion >= 0.5f * b.minExtent;
+  };
+  auto pathOf = [&](const ShapeRecord& r, const Sweep& sweep) {
+    return unionOf(computeAABB(r.shape, sweepTransform(sweep, 0.0f)),
+                   computeAABB(r.shape, sweepTransform(sweep, 1.0f)));
+  };
+  // Candidates without the broadphase: a shape whose path stays inside its fat AABB (a steady
+  // mover's box is stretched along its motion to hold the next step's sweep) can only meet
+  // shapes whose fat AABBs overlap its own, and every such pair has a contact here (pairs are
+  // updated at the start of the step; the refit comes after). So its candidates are its
+  // contacts' other shapes, those whose fat AABB meets the path: the query's set, from a list
+  // built in one pass over the contacts. 500 bullets' queries were a fifth of their arena's
+  // step. Segments and chain links are left to the query: a pair of them has no contact.
+  const std::size_t slots = static_cast<std::size_t>(awakeCount_);
+  if (contactSwept_.size() < shapes_.size()) contactSwept_.resize(shapes_.size(), -1);
+  sweptShapes_.clear();
+  for (std::size_t s = 0; s < slots; ++s) {
+    const Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
+    const Sweep sweep = sweepOf(b);
+    if (!fast(b, sweep)) continue;
+    for (std::int32_t own : b.shapes) {
+      const ShapeRecord& mine = shapes_[static_cast<std::size_t>(own)];
+      if (mine.isSensor || mine.shape.type == ShapeType::segment ||
+          mine.shape.type == ShapeType::chainSegment ||
+          !broadphase_.fatAABB(mine.proxy).contains(pathOf(mine, sweep)))
+        continue;
+      contactSwept_[static_cast<std::size_t>(own)] = static_cast<std::int32_t>(sweptShapes_.size());
+      sweptShapes_.push_back(own);
+    }
+  }
+  // The lists, by counting sort on the swept shape (in contact order within each).
+  candidateStart_.assign(sweptShapes_.size() + 1, 0);
+  candidates_.clear();
+  if (!sweptShapes_.empty()) {
+    auto eachCandidate = [&](auto&& visit) {
+      for (const Contact& c : contacts_) {
+        const std::int32_t a = contactSwept_[static_cast<std::size_t>(c.shapeA)];
+        const std::int32_t b = contactSwept_[static_cast<std::size_t>(c.shapeB)];
+        if (a >= 0) visit(a, c.shapeB);
+        if (b >= 0) visit(b, c.shapeA);
+      }
+    };
+    eachCandidate([&](std::int32_t k, std::int32_t) { ++candidateStart_[k + 1]; });
+    for (std::size_t k = 1; k < candidateStart_.size(); ++k)
+      candidateStart_[k] += candidateStart_[k - 1];
+    candidates_.resize(static_cast<std::size_t>(candidateStart_.back()));
+    fillCursor_.assign(candidateStart_.begin(), candidateStart_.end() - 1);
+    eachCandidate([&](std::int32_t k, std::int32_t other) {
+      candidates_[static_cast<std::size_t>(fillCursor_[static_cast<std::size_t>(k)]++)] = other;
+    });
+  }
+
+  for (std::size_t s = 0; s < slots; ++s) {
+    Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
+    const Sweep sweep = sweepOf(b);
+    if (!fast(b, sweep)) continue;
     float first = 1.0f;
     std::int32_t hitBody = -1;  // a moving body hit first, if any
     for (std::int32_t own : b.shapes) {
       const ShapeRecord& mine = shapes_[static_cast<std::size_t>(own)];
       if (mine.isSensor) continue;
       const ShapeProxy proxy = makeProxy(mine.shape);
-      const AABB path = unionOf(computeAABB(mine.shape, xf1), computeAABB(mine.shape, xf2));
-      broadphase_.queryAABB(path, broadphase_.filter(mine.proxy), [&](ProxyId other) {
-        const ShapeRecord& r = shapes_[broadphase_.userData(other)];
+      const AABB path = pathOf(mine, sweep);
+      auto visit = [&](std::int32_t shape) {
+        const ShapeRecord& r = shapes_[static_cast<std::size_t>(shape)];
         if (r.isSensor || r.body == mine.body) return true;
         const Body& ob = bodies_[static_cast<std::size_t>(r.body)];
         const bool moving = ob.type != BodyType::staticBody;
@@ -1283,14 +1335,29 @@ void World::continuous() {
         // Two moving bodies already touching (a bullet that hit and rides along the body it
         // hit) stay to their contact; stopping them at the start of every step would freeze
         // both in place.
-        if (moving &&
-            shapeDistance(proxy, xf1, otherProxy, sweepTransform(otherSweep, 0.0f)).distance <
-                2.0f * kLinearSlop)
+        if (moving && shapeDistance(proxy, sweepTransform(sweep, 0.0f), otherProxy,
+                                    sweepTransform(otherSweep, 0.0f))
+                              .distance < 2.0f * kLinearSlop)
           return true;
         first = toi.fraction;
         hitBody = moving && awake(ob) ? r.body : -1;
         return true;
-      });
+      };
+      const std::int32_t listed = contactSwept_[static_cast<std::size_t>(own)];
+      // The list holds while the path (shortened if an earlier body stopped this one) is
+      // still inside the fat AABB.
+      if (listed >= 0 && broadphase_.fatAABB(mine.proxy).contains(path)) {
+        for (std::int32_t k = candidateStart_[static_cast<std::size_t>(listed)];
+             k < candidateStart_[static_cast<std::size_t>(listed) + 1]; ++k) {
+          const std::int32_t other = candidates_[static_cast<std::size_t>(k)];
+          if (overlaps(broadphase_.fatAABB(shapes_[static_cast<std::size_t>(other)].proxy), path))
+            visit(other);
+        }
+      } else {
+        broadphase_.queryAABB(path, broadphase_.filter(mine.proxy), [&](ProxyId other) {
+          return visit(static_cast<std::int32_t>(broadphase_.userData(other)));
+        });
+      }
     }
     if (first < 1.0f) {
       if (hitBody >= 0) {
@@ -1300,6 +1367,8 @@ void World::continuous() {
       placeAt(b, first);
     }
   }
+  for (std::int32_t own : sweptShapes_)
+    contactSwept_[static_cast<std::size_t>(own)] = -1;
 }
 
 // ---------------------------------------------------------------------------------- queries

@@ -436,6 +436,12 @@ class World {
   std::vector<float> turnAngles_;
   std::vector<SinCos> turnRotations_;
   std::vector<std::int32_t> turnOwners_;
+  // Continuous collision: per shape, its index among the shapes whose candidates come from
+  // their contacts (-1 otherwise; reset after each step), those shapes, and their candidate
+  // lists (candidates_[candidateStart_[k] .. candidateStart_[k + 1]) for shape k).
+  std::vector<std::int32_t> contactSwept_;
+  std::vector<std::int32_t> sweptShapes_;
+  std::vector<std::int32_t> candidateStart_, candidates_, fillCursor_;
   ContactEvents events_;
   SensorEvents sensorEvents_;
   // Sensor shapes and the shapes whose fat AABBs overlap them.

@@ -1274,10 +1274,12 @@ void World::continuous() {
   const std::size_t slots = static_cast<std::size_t>(awakeCount_);
   if (contactSwept_.size() < shapes_.size()) contactSwept_.resize(shapes_.size(), -1);
   sweptShapes_.clear();
+  fastSlots_.clear();
   for (std::size_t s = 0; s < slots; ++s) {
     const Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
     const Sweep sweep = sweepOf(b);
     if (!fast(b, sweep)) continue;
+    fastSlots_.push_back(static_cast<std::int32_t>(s));
     for (std::int32_t own : b.shapes) {
       const ShapeRecord& mine = shapes_[static_cast<std::size_t>(own)];
       if (mine.isSensor || mine.shape.type == ShapeType::segment ||
@@ -1310,8 +1312,10 @@ void World::continuous() {
     });
   }
 
-  for (std::size_t s = 0; s < slots; ++s) {
-    Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
+  // In slot order, as found above; a body an earlier one stopped sweeps only as far as it went
+  // (and may no longer be fast).
+  for (std::int32_t s : fastSlots_) {
+    Body& b = bodies_[static_cast<std::size_t>(slotBody_[static_cast<std::size_t>(s)])];
     const Sweep sweep = sweepOf(b);
     if (!fast(b, sweep)) continue;
     float first = 1.0f;

@@ -441,6 +441,7 @@ class World {
   // lists (candidates_[candidateStart_[k] .. candidateStart_[k + 1]) for shape k).
   std::vector<std::int32_t> contactSwept_;
   std::vector<std::int32_t> sweptShapes_;
+  std::vector<std::int32_t> fastSlots_;  // the slots of bodies that moved far enough to sweep
   std::vector<std::int32_t> candidateStart_, candidates_, fillCursor_;
   ContactEvents events_;
   SensorEvents sensorEvents_;

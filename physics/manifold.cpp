@@ -325,6 +325,20 @@ float maxSeparation(const Hull& a, const Hull& b, float enough, int* edge) {
   return best;
 }
 
+// The edge w[0] -> w[1], whose ends lie at u0 and u1 along a face, clipped to the face's
+// extent [lo, hi] along it (each end moved to the bound it passed).
+[[gnu::always_inline]] inline void clipEdge(const Vec2 (&w)[2], float u0, float u1, float lo,
+                                            float hi, Vec2 (&out)[2]) {
+  out[0] = w[0];
+  out[1] = w[1];
+  if (u0 == u1) return;
+  auto at = [&](float u) { return lerp(w[0], w[1], (u - u0) / (u1 - u0)); };
+  if (u0 < lo) out[0] = at(lo);
+  if (u0 > hi) out[0] = at(hi);
+  if (u1 < lo) out[1] = at(lo);
+  if (u1 > hi) out[1] = at(hi);
+}
+
 // Reference face `edge` of `ref` (v1 -> v2, normal n): clips the incident edge of `inc` to the
 // slab between the face's side planes and adds the clipped points within `margin` to m, with
 // the normal from A to B (flip: the reference is B's face). Returns false, adding nothing, when
@@ -340,15 +354,9 @@ float maxSeparation(const Hull& a, const Hull& b, float enough, int* edge) {
   Vec2 t = normalize(v2 - v1);
   float lo = 0.0f, hi = dot(v2 - v1, t);
   float u0 = dot(w[0] - v1, t), u1 = dot(w[1] - v1, t);
-  Vec2 c[2] = {w[0], w[1]};
   if ((u0 < lo && u1 < lo) || (u0 > hi && u1 > hi)) return false;
-  if (u0 != u1) {
-    auto at = [&](float u) { return lerp(w[0], w[1], (u - u0) / (u1 - u0)); };
-    if (u0 < lo) c[0] = at(lo);
-    if (u0 > hi) c[0] = at(hi);
-    if (u1 < lo) c[1] = at(lo);
-    if (u1 > hi) c[1] = at(hi);
-  }
+  Vec2 c[2];
+  clipEdge(w, u0, u1, lo, hi, c);
   const float refR = ref.radius, incR = inc.radius, radii = refR + incR;
   for (int k = 0; k < 2; ++k) {
     float core = dot(c[k] - v1, n);
@@ -641,14 +649,8 @@ Manifold collideOrientedBoxes(const Box& a, const Transform& xfA, const Box& b,
       (u0 > hi && u1 > hi))
     return collideHulls(Shape(a), xfA, Shape(b), xfB, margin);
 
-  Vec2 clipped[2] = {w[0], w[1]};
-  if (u0 != u1) {
-    auto at = [&](float u) { return lerp(w[0], w[1], (u - u0) / (u1 - u0)); };
-    if (u0 < lo) clipped[0] = at(lo);
-    if (u0 > hi) clipped[0] = at(hi);
-    if (u1 < lo) clipped[1] = at(lo);
-    if (u1 > hi) clipped[1] = at(hi);
-  }
+  Vec2 clipped[2];
+  clipEdge(w, u0, u1, lo, hi, clipped);
   Local m;
   const Vec2 n = k == 0 ? Vec2{sigma, 0.0f} : Vec2{0.0f, sigma};
   for (int j = 0; j < 2; ++j) {

@@ -1260,9 +1260,9 @@ void World::continuous() {
     const float motion = length(sweep.c2 - sweep.c1) + std::fabs(sweep.a2 - sweep.a1) * b.maxExtent;
     return motion >= 0.5f * b.minExtent;
   };
-  auto pathOf = [&](const ShapeRecord& r, const Sweep& sweep) {
-    return unionOf(computeAABB(r.shape, sweepTransform(sweep, 0.0f)),
-                   computeAABB(r.shape, sweepTransform(sweep, 1.0f)));
+  // A shape's path: the union of its boxes where the body starts and ends (xf1, xf2).
+  auto pathOf = [&](const ShapeRecord& r, const Transform& xf1, const Transform& xf2) {
+    return unionOf(computeAABB(r.shape, xf1), computeAABB(r.shape, xf2));
   };
   // Candidates without the broadphase: a shape whose path stays inside its fat AABB (a steady
   // mover's box is stretched along its motion to hold the next step's sweep) can only meet
@@ -1280,11 +1280,12 @@ void World::continuous() {
     const Sweep sweep = sweepOf(b);
     if (!fast(b, sweep)) continue;
     fastSlots_.push_back(static_cast<std::int32_t>(s));
+    const Transform xf1 = sweepTransform(sweep, 0.0f), xf2 = sweepTransform(sweep, 1.0f);
     for (std::int32_t own : b.shapes) {
       const ShapeRecord& mine = shapes_[static_cast<std::size_t>(own)];
       if (mine.isSensor || mine.shape.type == ShapeType::segment ||
           mine.shape.type == ShapeType::chainSegment ||
-          !broadphase_.fatAABB(mine.proxy).contains(pathOf(mine, sweep)))
+          !broadphase_.fatAABB(mine.proxy).contains(pathOf(mine, xf1, xf2)))
         continue;
       contactSwept_[static_cast<std::size_t>(own)] = static_cast<std::int32_t>(sweptShapes_.size());
       sweptShapes_.push_back(own);
@@ -1318,13 +1319,14 @@ void World::continuous() {
     Body& b = bodies_[static_cast<std::size_t>(slotBody_[static_cast<std::size_t>(s)])];
     const Sweep sweep = sweepOf(b);
     if (!fast(b, sweep)) continue;
+    const Transform xf1 = sweepTransform(sweep, 0.0f), xf2 = sweepTransform(sweep, 1.0f);
     float first = 1.0f;
     std::int32_t hitBody = -1;  // a moving body hit first, if any
     for (std::int32_t own : b.shapes) {
       const ShapeRecord& mine = shapes_[static_cast<std::size_t>(own)];
       if (mine.isSensor) continue;
       const ShapeProxy proxy = makeProxy(mine.shape);
-      const AABB path = pathOf(mine, sweep);
+      const AABB path = pathOf(mine, xf1, xf2);
       auto visit = [&](std::int32_t shape) {
         const ShapeRecord& r = shapes_[static_cast<std::size_t>(shape)];
         if (r.isSensor || r.body == mine.body) return true;
@@ -1339,9 +1341,9 @@ void World::continuous() {
         // Two moving bodies already touching (a bullet that hit and rides along the body it
         // hit) stay to their contact; stopping them at the start of every step would freeze
         // both in place.
-        if (moving && shapeDistance(proxy, sweepTransform(sweep, 0.0f), otherProxy,
-                                    sweepTransform(otherSweep, 0.0f))
-                              .distance < 2.0f * kLinearSlop)
+        if (moving &&
+            shapeDistance(proxy, xf1, otherProxy, sweepTransform(otherSweep, 0.0f)).distance <
+                2.0f * kLinearSlop)
           return true;
         first = toi.fraction;
         hitBody = moving && awake(ob) ? r.body : -1;

@@ -128,6 +128,20 @@ rc::RayCastInput rayThroughLink(rc::Random& rng, const PairCase& c) {
 
 using Cases = std::vector<std::unique_ptr<PairCase>>;
 
+// A case's shapes and transforms as both engines take them (our proxies, Box2D's shapes,
+// transforms and proxies). False when Box2D would hold a different polygon.
+bool setEngines(PairCase* c) {
+  c->pa = rc::makeProxy(c->a);
+  c->pb = rc::makeProxy(c->b);
+  if (!shapeToB2(c->a, &c->oa, &c->capsuleA) || !shapeToB2(c->b, &c->ob, &c->capsuleB))
+    return false;
+  c->ba = rc::testing::toB2(c->xa);
+  c->bb = rc::testing::toB2(c->xb);
+  c->qa.set(c->pa);
+  c->qb.set(c->pb);
+  return true;
+}
+
 // Cases are heap-allocated once and never moved: the Box2D proxies point into them. Both
 // engines get every case's shapes, transforms and sweeps.
 Cases makeCases(Kind ka, Kind kb, uint64_t seed, Placement place = {}) {
@@ -143,14 +157,7 @@ Cases makeCases(Kind ka, Kind kb, uint64_t seed, Placement place = {}) {
     if (place.aabbOverlap &&
         !rc::overlaps(rc::computeAABB(c->a, c->xa), rc::computeAABB(c->b, c->xb)))
       continue;
-    c->pa = rc::makeProxy(c->a);
-    c->pb = rc::makeProxy(c->b);
-    if (!shapeToB2(c->a, &c->oa, &c->capsuleA) || !shapeToB2(c->b, &c->ob, &c->capsuleB))
-      continue;  // drawn again: Box2D would hold a different polygon
-    c->ba = rc::testing::toB2(c->xa);
-    c->bb = rc::testing::toB2(c->xb);
-    c->qa.set(c->pa);
-    c->qb.set(c->pb);
+    if (!setEngines(c.get())) continue;  // drawn again: Box2D would hold a different polygon
     c->circleA = rc::computeBoundingCircle(c->a);
     c->circleB = rc::computeBoundingCircle(c->b);
     // A sweep that closes a 3 m gap with up to a radian of spin: most cases hit.
@@ -186,13 +193,7 @@ Cases makeRestingBoxes(uint64_t seed) {
         rng.uniform(0.0f, 1.0f) < 0.5f ? Vec2{offset, 1.0f + gap} : Vec2{1.0f + gap, 0.1f * offset};
     c->xa = {{}, rc::Rot::fromAngle(rng.uniform(-0.02f, 0.02f))};
     c->xb = {pb, rc::Rot::fromAngle(rng.uniform(-0.02f, 0.02f))};
-    c->pa = rc::makeProxy(c->a);
-    c->pb = rc::makeProxy(c->b);
-    if (!shapeToB2(c->a, &c->oa, &c->capsuleA) || !shapeToB2(c->b, &c->ob, &c->capsuleB)) continue;
-    c->ba = rc::testing::toB2(c->xa);
-    c->bb = rc::testing::toB2(c->xb);
-    c->qa.set(c->pa);
-    c->qb.set(c->pb);
+    if (!setEngines(c.get())) continue;
     cases.push_back(std::move(c));
   }
   return cases;

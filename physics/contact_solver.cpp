@@ -1,6 +1,15 @@
+// Every function here that takes or returns vectors is inlined into the per-width pass functions
+// (solve4, solve8, ...), so no eight-lane vector crosses a call compiled without AVX: the
+// compilers' warning that such a call would change the ABI (-Wpsabi) does not apply.
+#if defined(__clang__)
+#pragma clang diagnostic ignored "-Wunknown-warning-option"
+#endif
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 #include "physics/contact_solver.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <cstring>
 #include <vector>
@@ -11,74 +20,108 @@
 namespace rc {
 namespace {
 
-using simd::F;
-using simd::kLanes;
-using simd::M;
 using simd::select;
-using simd::splat;
 using simd::vmax;
 using simd::vmin;
+
+#define RC_INLINE [[gnu::always_inline]] inline
 
 // Colours a constraint may take; a body with more contacts than this overflows.
 constexpr int kColours = 24;
 
+template <int N>
 struct PointLanes {
+  using F = typename simd::Lanes<N>::F;
   F rAx, rAy, rBx, rBy, rnA, rnB, rtA, rtB;
   F baseSeparation, normalMass, tangentMass;
   F normalImpulse, tangentImpulse, maxNormalImpulse, relativeVelocity;
 };
 
-// Four constraints, structure of arrays. Empty lanes have zero masses and point at the null body.
+// N constraints, structure of arrays. Empty lanes have zero masses and point at the null body.
+template <int N>
 struct Batch {
-  std::int32_t a[kLanes], b[kLanes];
+  using F = typename simd::Lanes<N>::F;
+  using M = typename simd::Lanes<N>::M;
+  std::int32_t a[N], b[N];
   F invMassA, invIA, invMassB, invIB;
   F nx, ny, friction;
   F k11, k12, k22, i11, i12, i22;
   M block;  // the lane's two points may be solved together
-  PointLanes p[2];
+  PointLanes<N> p[2];
   int points;  // the most points of any lane: with 1 (circles), the second point's lanes are
                // skipped
 };
+static_assert(alignof(Batch<8>) == 32, "AVX loads of a batch need it 32-byte aligned");
 
 // The bodies of one side of a batch, lane by lane (pad: SolverBody::unused, written back as read).
+template <int N>
 struct BodyLanes {
+  using F = typename simd::Lanes<N>::F;
   F vx, vy, w, pad, dpx, dpy, dqc, dqs;
 };
 
-// Rows of a 4x4 matrix into its columns. With the bodies' 16-byte halves as rows, one gather is
-// eight vector loads and sixteen shuffles, where building each lane from scalars took 28 loads
-// and as many inserts (a third of a batch's solve).
-inline void transpose(F& a, F& b, F& c, F& d) {
-  const F ab01 = __builtin_shufflevector(a, b, 0, 4, 1, 5);
-  const F ab23 = __builtin_shufflevector(a, b, 2, 6, 3, 7);
-  const F cd01 = __builtin_shufflevector(c, d, 0, 4, 1, 5);
-  const F cd23 = __builtin_shufflevector(c, d, 2, 6, 3, 7);
+// Rows of a 4x4 matrix into its columns; with eight lanes, two 4x4 matrices side by side (the
+// low and high halves), each transposed in its own half. With the bodies' 16-byte halves as
+// rows, one gather of four bodies is eight vector loads and sixteen shuffles, where building
+// each lane from scalars took 28 loads and as many inserts (a third of a batch's solve).
+RC_INLINE void transpose(simd::F& a, simd::F& b, simd::F& c, simd::F& d) {
+  const simd::F ab01 = __builtin_shufflevector(a, b, 0, 4, 1, 5);
+  const simd::F ab23 = __builtin_shufflevector(a, b, 2, 6, 3, 7);
+  const simd::F cd01 = __builtin_shufflevector(c, d, 0, 4, 1, 5);
+  const simd::F cd23 = __builtin_shufflevector(c, d, 2, 6, 3, 7);
   a = __builtin_shufflevector(ab01, cd01, 0, 1, 4, 5);
   b = __builtin_shufflevector(ab01, cd01, 2, 3, 6, 7);
   c = __builtin_shufflevector(ab23, cd23, 0, 1, 4, 5);
   d = __builtin_shufflevector(ab23, cd23, 2, 3, 6, 7);
 }
+RC_INLINE void transpose(simd::F8& a, simd::F8& b, simd::F8& c, simd::F8& d) {
+  const simd::F8 ab01 = __builtin_shufflevector(a, b, 0, 8, 1, 9, 4, 12, 5, 13);
+  const simd::F8 ab23 = __builtin_shufflevector(a, b, 2, 10, 3, 11, 6, 14, 7, 15);
+  const simd::F8 cd01 = __builtin_shufflevector(c, d, 0, 8, 1, 9, 4, 12, 5, 13);
+  const simd::F8 cd23 = __builtin_shufflevector(c, d, 2, 10, 3, 11, 6, 14, 7, 15);
+  a = __builtin_shufflevector(ab01, cd01, 0, 1, 8, 9, 4, 5, 12, 13);
+  b = __builtin_shufflevector(ab01, cd01, 2, 3, 10, 11, 6, 7, 14, 15);
+  c = __builtin_shufflevector(ab23, cd23, 0, 1, 8, 9, 4, 5, 12, 13);
+  d = __builtin_shufflevector(ab23, cd23, 2, 3, 10, 11, 6, 7, 14, 15);
+}
 
 // A SolverBody's first half (v, w, unused) or second half (dp, dq) as one vector.
-inline F loadHalf(const SolverBody& b, int half) {
-  F row;
+RC_INLINE simd::F loadHalf(const SolverBody& b, int half) {
+  simd::F row;
   std::memcpy(&row, reinterpret_cast<const char*>(&b) + 16 * half, sizeof row);
   return row;
 }
+RC_INLINE void storeHalf(SolverBody& b, simd::F row) {
+  std::memcpy(static_cast<void*>(&b), &row, sizeof row);
+}
 
-template <bool withMotion>
-inline BodyLanes gather(const SolverBody* bodies, const std::int32_t (&index)[kLanes]) {
-  BodyLanes out;
-  out.vx = loadHalf(bodies[index[0]], 0);
-  out.vy = loadHalf(bodies[index[1]], 0);
-  out.w = loadHalf(bodies[index[2]], 0);
-  out.pad = loadHalf(bodies[index[3]], 0);
+// Row k of the matrix transpose() turns into lanes: body k's half, and with eight lanes body
+// k + 4's half beside it.
+template <int N>
+RC_INLINE typename simd::Lanes<N>::F loadRow(const SolverBody* bodies,
+                                             const std::int32_t (&index)[N], int k, int half) {
+  const simd::F low = loadHalf(bodies[index[k]], half);
+  if constexpr (N == 4) {
+    return low;
+  } else {
+    const simd::F high = loadHalf(bodies[index[k + 4]], half);
+    return __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7);
+  }
+}
+
+template <int N, bool withMotion>
+RC_INLINE BodyLanes<N> gather(const SolverBody* bodies, const std::int32_t (&index)[N]) {
+  BodyLanes<N> out;
+  out.vx = loadRow(bodies, index, 0, 0);
+  out.vy = loadRow(bodies, index, 1, 0);
+  out.w = loadRow(bodies, index, 2, 0);
+  out.pad = loadRow(bodies, index, 3, 0);
   transpose(out.vx, out.vy, out.w, out.pad);
   if constexpr (withMotion) {
-    out.dpx = loadHalf(bodies[index[0]], 1);
-    out.dpy = loadHalf(bodies[index[1]], 1);
-    out.dqc = loadHalf(bodies[index[2]], 1);
-    out.dqs = loadHalf(bodies[index[3]], 1);
+    out.dpx = loadRow(bodies, index, 0, 1);
+    out.dpy = loadRow(bodies, index, 1, 1);
+    out.dqc = loadRow(bodies, index, 2, 1);
+    out.dqs = loadRow(bodies, index, 3, 1);
     transpose(out.dpx, out.dpy, out.dqc, out.dqs);
   }
   return out;
@@ -86,21 +129,32 @@ inline BodyLanes gather(const SolverBody* bodies, const std::int32_t (&index)[kL
 
 // Lanes are written in order; lanes sharing a body (the null body, a kinematic body) hold the
 // same unchanged velocity, so the order does not matter. Only the first half is written.
-inline void scatter(SolverBody* bodies, const std::int32_t (&index)[kLanes], F vx, F vy, F w,
-                    F pad) {
+template <int N, class F>
+RC_INLINE void scatter(SolverBody* bodies, const std::int32_t (&index)[N], F vx, F vy, F w, F pad) {
   transpose(vx, vy, w, pad);
-  const F rows[kLanes] = {vx, vy, w, pad};
-  for (int l = 0; l < kLanes; ++l)
-    std::memcpy(static_cast<void*>(&bodies[index[l]]), &rows[l], sizeof(F));
+  const F rows[4] = {vx, vy, w, pad};
+  for (int k = 0; k < 4; ++k) {
+    if constexpr (N == 4) {
+      storeHalf(bodies[index[k]], rows[k]);
+    } else {
+      storeHalf(bodies[index[k]], __builtin_shufflevector(rows[k], rows[k], 0, 1, 2, 3));
+    }
+  }
+  if constexpr (N == 8) {
+    for (int k = 0; k < 4; ++k)
+      storeHalf(bodies[index[k + 4]], __builtin_shufflevector(rows[k], rows[k], 4, 5, 6, 7));
+  }
 }
 
 // Velocities of both sides of a batch, updated by impulses.
+template <int N>
 struct Velocities {
+  using F = typename simd::Lanes<N>::F;
   F vAx, vAy, wA, vBx, vBy, wB;
 
   // Impulse `applied` along the direction (dx, dy), with the lever arms rA x d and rB x d:
   // -P on A, +P on B.
-  void apply(const Batch& c, F applied, F dx, F dy, F leverA, F leverB) {
+  RC_INLINE void apply(const Batch<N>& c, F applied, F dx, F dy, F leverA, F leverB) {
     const F px = applied * dx, py = applied * dy;
     vAx -= c.invMassA * px;
     vAy -= c.invMassA * py;
@@ -110,14 +164,16 @@ struct Velocities {
     wB += c.invIB * applied * leverB;
   }
   // Relative velocity along (dx, dy) at a point with lever arms leverA, leverB.
-  F along(F dx, F dy, F leverA, F leverB) const {
+  RC_INLINE F along(F dx, F dy, F leverA, F leverB) const {
     return (vBx - vAx) * dx + (vBy - vAy) * dy + wB * leverB - wA * leverA;
   }
 };
 
-void warmStartBatch(Batch& c, SolverBody* bodies) {
-  const BodyLanes A = gather<false>(bodies, c.a), B = gather<false>(bodies, c.b);
-  Velocities v{A.vx, A.vy, A.w, B.vx, B.vy, B.w};
+template <int N>
+RC_INLINE void warmStartBatch(Batch<N>& c, SolverBody* bodies) {
+  using F = typename simd::Lanes<N>::F;
+  const BodyLanes<N> A = gather<N, false>(bodies, c.a), B = gather<N, false>(bodies, c.b);
+  Velocities<N> v{A.vx, A.vy, A.w, B.vx, B.vy, B.w};
   const F tx = c.ny, ty = -c.nx;
   // The approach speed restitution reverses: the fastest free-motion normal velocity of the
   // step until the solver first pushes the point, which includes what gravity added before
@@ -125,12 +181,12 @@ void warmStartBatch(Batch& c, SolverBody* bodies) {
   // and are not an approach: restitution on those fed a cluster of overlapping circles
   // energy, step after step.
   for (int k = 0; k < c.points; ++k) {
-    PointLanes& p = c.p[k];
+    PointLanes<N>& p = c.p[k];
     const F vn = vmin(p.relativeVelocity, v.along(c.nx, c.ny, p.rnA, p.rnB));
     p.relativeVelocity = select(p.maxNormalImpulse > 0.0f, p.relativeVelocity, vn);
   }
   for (int k = 0; k < c.points; ++k) {
-    const PointLanes& p = c.p[k];
+    const PointLanes<N>& p = c.p[k];
     const F px = p.normalImpulse * c.nx + p.tangentImpulse * tx;
     const F py = p.normalImpulse * c.ny + p.tangentImpulse * ty;
     v.vAx -= c.invMassA * px;
@@ -140,22 +196,55 @@ void warmStartBatch(Batch& c, SolverBody* bodies) {
     v.vBy += c.invMassB * py;
     v.wB += c.invIB * (p.normalImpulse * p.rnB + p.tangentImpulse * p.rtB);
   }
-  scatter(bodies, c.a, v.vAx, v.vAy, v.wA, A.pad);
-  scatter(bodies, c.b, v.vBx, v.vBy, v.wB, B.pad);
+  scatter<N>(bodies, c.a, v.vAx, v.vAy, v.wA, A.pad);
+  scatter<N>(bodies, c.b, v.vBx, v.vBy, v.wB, B.pad);
 }
 
-void solveBatch(Batch& c, SolverBody* bodies, const ContactSoftness& soft, bool useBias) {
-  const BodyLanes A = gather<true>(bodies, c.a), B = gather<true>(bodies, c.b);
-  Velocities v{A.vx, A.vy, A.w, B.vx, B.vy, B.w};
-  const M biasLanes = useBias ? M{-1, -1, -1, -1} : M{};
+// What one point's normal row needs from the softness: its bias and its mass and impulse
+// scales, by regime.
+template <int N>
+struct PointRegime {
+  using F = typename simd::Lanes<N>::F;
+  using M = typename simd::Lanes<N>::M;
+  F bias, massScale, impulseScale;
+  M isSoft;
+};
+
+template <int N>
+RC_INLINE void setNormal(const Batch<N>& c, Velocities<N>& v, PointLanes<N>& p,
+                         typename simd::Lanes<N>::F total) {
+  const auto applied = total - p.normalImpulse;
+  p.normalImpulse = total;
+  p.maxNormalImpulse = vmax(p.maxNormalImpulse, applied);
+  v.apply(c, applied, c.nx, c.ny, p.rnA, p.rnB);
+}
+
+// One point alone: l + (-m s_m (vn + b) - s_i l), clamped to push only.
+template <int N>
+RC_INLINE typename simd::Lanes<N>::F alone(const PointLanes<N>& p, typename simd::Lanes<N>::F vn,
+                                           const PointRegime<N>& r) {
+  using F = typename simd::Lanes<N>::F;
+  const F impulse = -p.normalMass * r.massScale * (vn + r.bias) - r.impulseScale * p.normalImpulse;
+  return vmax(p.normalImpulse + impulse, F{});
+}
+
+template <int N>
+RC_INLINE void solveBatch(Batch<N>& c, SolverBody* bodies, const ContactSoftness& soft,
+                          bool useBias) {
+  using F = typename simd::Lanes<N>::F;
+  using M = typename simd::Lanes<N>::M;
+  using simd::splat;
+  const BodyLanes<N> A = gather<N, true>(bodies, c.a), B = gather<N, true>(bodies, c.b);
+  Velocities<N> v{A.vx, A.vy, A.w, B.vx, B.vy, B.w};
+  const M biasLanes = useBias ? ~M{} : M{};
 
   // Each point's regime: speculative (apart: approach no faster than closes the gap this
   // substep), rigid (within the slop: carries its load without pressing in further), or soft
   // (deeper, with the push-out bias; in the relax pass rigid too).
-  F bias[2], massScale[2], impulseScale[2];
-  M isSoft[2];
+  PointRegime<N> regime[2];
   for (int k = 0; k < c.points; ++k) {
-    const PointLanes& p = c.p[k];
+    const PointLanes<N>& p = c.p[k];
+    PointRegime<N>& r = regime[k];
     // Separation now, from how far the bodies moved and turned since the manifold was made.
     const F rAx = A.dqc * p.rAx - A.dqs * p.rAy, rAy = A.dqs * p.rAx + A.dqc * p.rAy;
     const F rBx = B.dqc * p.rBx - B.dqs * p.rBy, rBy = B.dqs * p.rBx + B.dqc * p.rBy;
@@ -163,34 +252,22 @@ void solveBatch(Batch& c, SolverBody* bodies, const ContactSoftness& soft, bool 
     const F dy = (B.dpy - A.dpy) + (rBy - p.rBy) - (rAy - p.rAy);
     const F s = dx * c.nx + dy * c.ny + p.baseSeparation;
     const M apart = s > 0.0f;
-    isSoft[k] = ~apart & (s <= -kLinearSlop) & biasLanes;
-    const F push = vmax(soft.biasRate * s, splat(-soft.maxPushout));
+    r.isSoft = ~apart & (s <= -kLinearSlop) & biasLanes;
+    const F push = vmax(soft.biasRate * s, splat<F>(-soft.maxPushout));
     // Inside the slop, rigid, but pushed out towards half of it at the soft bias rate (the relax
     // pass takes the push's velocity back out): what a stack took in while it settled comes back
     // out, where a rigid contact alone keeps it (base-40 pyramid's top 0.074 -> 0.046 m below
     // its exact height after 1000 steps). The price: a tall stack sleeps later (the base-40
     // pyramid with sleeping on averages 358 us a step over 1000 steps, was 144).
     const F settle = vmin(soft.biasRate * (s + 0.5f * kLinearSlop), F{});
-    bias[k] = select(apart, s * soft.invH, select(isSoft[k], push, select(biasLanes, settle, F{})));
-    massScale[k] = select(isSoft[k], splat(soft.massScale), splat(1.0f));
-    impulseScale[k] = select(isSoft[k], splat(soft.impulseScale), F{});
+    r.bias = select(apart, s * soft.invH, select(r.isSoft, push, select(biasLanes, settle, F{})));
+    r.massScale = select(r.isSoft, splat<F>(soft.massScale), splat<F>(1.0f));
+    r.impulseScale = select(r.isSoft, splat<F>(soft.impulseScale), F{});
   }
 
-  auto setNormal = [&](PointLanes& p, F total) {
-    const F applied = total - p.normalImpulse;
-    p.normalImpulse = total;
-    p.maxNormalImpulse = vmax(p.maxNormalImpulse, applied);
-    v.apply(c, applied, c.nx, c.ny, p.rnA, p.rnB);
-  };
-  // One point alone: l + (-m s_m (vn + b) - s_i l), clamped to push only.
-  auto alone = [&](const PointLanes& p, F vn, int k) {
-    const F impulse =
-        -p.normalMass * massScale[k] * (vn + bias[k]) - impulseScale[k] * p.normalImpulse;
-    return vmax(p.normalImpulse + impulse, F{});
-  };
-  PointLanes &p0 = c.p[0], &p1 = c.p[1];
+  PointLanes<N>&p0 = c.p[0], &p1 = c.p[1];
   if (c.points == 1) {
-    setNormal(p0, alone(p0, v.along(c.nx, c.ny, p0.rnA, p0.rnB), 0));
+    setNormal(c, v, p0, alone(p0, v.along(c.nx, c.ny, p0.rnA, p0.rnB), regime[0]));
   } else {
     // Both points at once where the manifold allows it (a 2x2 linear complementarity problem):
     // solved one after the other, the first point's impulse turns the body and the second pushes
@@ -202,11 +279,11 @@ void solveBatch(Batch& c, SolverBody* bodies, const ContactSoftness& soft, bool 
     const F l0 = p0.normalImpulse, l1 = p1.normalImpulse;
     const F vn0 = v.along(c.nx, c.ny, p0.rnA, p0.rnB);
     const F vn1 = v.along(c.nx, c.ny, p1.rnA, p1.rnB);
-    const M blockSoft = isSoft[0];
-    const F sm = massScale[0];
-    const F carry = select(blockSoft, splat(soft.carry), splat(1.0f));
-    const F q0 = vn0 + bias[0] - carry * (c.k11 * l0 + c.k12 * l1);
-    const F q1 = vn1 + bias[1] - carry * (c.k12 * l0 + c.k22 * l1);
+    const M blockSoft = regime[0].isSoft;
+    const F sm = regime[0].massScale;
+    const F carry = select(blockSoft, splat<F>(soft.carry), splat<F>(1.0f));
+    const F q0 = vn0 + regime[0].bias - carry * (c.k11 * l0 + c.k12 * l1);
+    const F q1 = vn1 + regime[1].bias - carry * (c.k12 * l0 + c.k22 * l1);
     const F both0 = -sm * (c.i11 * q0 + c.i12 * q1), both1 = -sm * (c.i12 * q0 + c.i22 * q1);
     const F a12 = select(blockSoft, c.k12 * soft.invMassScale, c.k12);
     const M bothPush = (both0 >= 0.0f) & (both1 >= 0.0f);
@@ -215,19 +292,20 @@ void solveBatch(Batch& c, SolverBody* bodies, const ContactSoftness& soft, bool 
     const F second1 = -sm * p1.normalMass * q1;
     const M secondPushes = (second1 >= 0.0f) & (a12 * second1 + q0 >= 0.0f);
     const M neither = (q0 >= 0.0f) & (q1 >= 0.0f);
-    const M useBlock =
-        c.block & (isSoft[0] == isSoft[1]) & (bothPush | firstPushes | secondPushes | neither);
+    const M useBlock = c.block & (regime[0].isSoft == regime[1].isSoft) &
+                       (bothPush | firstPushes | secondPushes | neither);
     const F block0 = select(bothPush, both0, select(firstPushes, first0, F{}));
     const F block1 =
         select(bothPush, both1, select(firstPushes, F{}, select(secondPushes, second1, F{})));
-    setNormal(p0, select(useBlock, block0, alone(p0, vn0, 0)));
-    setNormal(p1, select(useBlock, block1, alone(p1, v.along(c.nx, c.ny, p1.rnA, p1.rnB), 1)));
+    setNormal(c, v, p0, select(useBlock, block0, alone(p0, vn0, regime[0])));
+    setNormal(c, v, p1,
+              select(useBlock, block1, alone(p1, v.along(c.nx, c.ny, p1.rnA, p1.rnB), regime[1])));
   }
 
   // Coulomb friction, bounded by each point's normal impulse.
   const F tx = c.ny, ty = -c.nx;
   for (int k = 0; k < c.points; ++k) {
-    PointLanes& p = c.p[k];
+    PointLanes<N>& p = c.p[k];
     const F vt = v.along(tx, ty, p.rtA, p.rtB);
     const F limit = c.friction * p.normalImpulse;
     const F total = vmin(vmax(p.tangentImpulse - p.tangentMass * vt, -limit), limit);
@@ -235,8 +313,148 @@ void solveBatch(Batch& c, SolverBody* bodies, const ContactSoftness& soft, bool 
     p.tangentImpulse = total;
     v.apply(c, applied, tx, ty, p.rtA, p.rtB);
   }
-  scatter(bodies, c.a, v.vAx, v.vAy, v.wA, A.pad);
-  scatter(bodies, c.b, v.vBx, v.vBy, v.wB, B.pad);
+  scatter<N>(bodies, c.a, v.vAx, v.vAy, v.wA, A.pad);
+  scatter<N>(bodies, c.b, v.vBx, v.vBy, v.wB, B.pad);
+}
+
+// The passes over every batch, inlined into one function per lane count: four lanes in the
+// baseline instruction set, eight in a function compiled for AVX2 (chosen at run time).
+template <int N>
+RC_INLINE void warmStartAll(std::span<Batch<N>> batches, SolverBody* bodies) {
+  for (Batch<N>& b : batches)
+    warmStartBatch(b, bodies);
+}
+template <int N>
+RC_INLINE void solveAll(std::span<Batch<N>> batches, SolverBody* bodies,
+                        const ContactSoftness& soft, bool useBias, bool backward) {
+  if (backward) {
+    for (std::size_t i = batches.size(); i-- > 0;)
+      solveBatch(batches[i], bodies, soft, useBias);
+  } else {
+    for (Batch<N>& b : batches)
+      solveBatch(b, bodies, soft, useBias);
+  }
+}
+
+void warmStart4(std::span<Batch<4>> batches, SolverBody* bodies) {
+  warmStartAll(batches, bodies);
+}
+void solve4(std::span<Batch<4>> batches, SolverBody* bodies, const ContactSoftness& soft,
+            bool useBias, bool backward) {
+  solveAll(batches, bodies, soft, useBias, backward);
+}
+
+#if defined(__x86_64__) || defined(__i386__)
+#define RC_HAVE_WIDE_SOLVER 1
+[[gnu::target("avx2")]] void warmStart8(std::span<Batch<8>> batches, SolverBody* bodies) {
+  warmStartAll(batches, bodies);
+}
+[[gnu::target("avx2")]] void solve8(std::span<Batch<8>> batches, SolverBody* bodies,
+                                    const ContactSoftness& soft, bool useBias, bool backward) {
+  solveAll(batches, bodies, soft, useBias, backward);
+}
+bool cpuHasWideSolver() {
+  return __builtin_cpu_supports("avx2");
+}
+#else
+#define RC_HAVE_WIDE_SOLVER 0
+#endif
+
+std::atomic<int> laneLimit{8};
+
+// Fills a width's batches from the constraints: each colour's constraints N at a time, then
+// the overflow one at a time. Empty lanes stay zero, so every impulse they compute is zero.
+template <int N>
+void packBatches(std::span<const ContactConstraint> constraints,
+                 std::span<const std::int32_t> colour, const int (&perColour)[kColours + 1],
+                 int bodyCount, std::vector<Batch<N>>& batches,
+                 std::vector<std::int32_t>& laneConstraint) {
+  int firstBatch[kColours + 2] = {};
+  for (int k = 0; k < kColours; ++k)
+    firstBatch[k + 1] = firstBatch[k] + (perColour[k] + N - 1) / N;
+  firstBatch[kColours + 1] = firstBatch[kColours] + perColour[kColours];
+  const auto batchCount = static_cast<std::size_t>(firstBatch[kColours + 1]);
+  batches.resize(batchCount);
+  laneConstraint.assign(batchCount * N, -1);
+  for (Batch<N>& b : batches) {
+    b = Batch<N>{};
+    b.points = 1;
+    std::fill(std::begin(b.a), std::end(b.a), bodyCount);
+    std::fill(std::begin(b.b), std::end(b.b), bodyCount);
+  }
+  int filled[kColours + 1] = {};
+  for (std::size_t i = 0; i < constraints.size(); ++i) {
+    const int c = colour[i];
+    const int at = filled[c]++;
+    const int lanesPer = c < kColours ? N : 1;
+    const auto batch = static_cast<std::size_t>(firstBatch[c] + at / lanesPer);
+    laneConstraint[batch * N + static_cast<std::size_t>(at % lanesPer)] =
+        static_cast<std::int32_t>(i);
+  }
+  for (std::size_t bi = 0; bi < batchCount; ++bi) {
+    Batch<N>& b = batches[bi];
+    for (int l = 0; l < N; ++l) {
+      const std::int32_t ci = laneConstraint[bi * N + static_cast<std::size_t>(l)];
+      if (ci < 0) continue;
+      const ContactConstraint& cc = constraints[static_cast<std::size_t>(ci)];
+      b.a[l] = cc.slotA >= 0 ? cc.slotA : bodyCount;
+      b.b[l] = cc.slotB >= 0 ? cc.slotB : bodyCount;
+      b.invMassA[l] = cc.invMassA;
+      b.invIA[l] = cc.invIA;
+      b.invMassB[l] = cc.invMassB;
+      b.invIB[l] = cc.invIB;
+      b.nx[l] = cc.normal.x;
+      b.ny[l] = cc.normal.y;
+      b.friction[l] = cc.friction;
+      b.k11[l] = cc.k11;
+      b.k12[l] = cc.k12;
+      b.k22[l] = cc.k22;
+      b.i11[l] = cc.i11;
+      b.i12[l] = cc.i12;
+      b.i22[l] = cc.i22;
+      b.block[l] = cc.pointCount == 2 && cc.blockSolve ? -1 : 0;
+      b.points = std::max(b.points, cc.pointCount);
+      for (int k = 0; k < cc.pointCount; ++k) {
+        const ConstraintPoint& s = cc.points[k];
+        PointLanes<N>& p = b.p[k];
+        p.rAx[l] = s.rA.x;
+        p.rAy[l] = s.rA.y;
+        p.rBx[l] = s.rB.x;
+        p.rBy[l] = s.rB.y;
+        p.rnA[l] = s.rnA;
+        p.rnB[l] = s.rnB;
+        p.rtA[l] = s.rtA;
+        p.rtB[l] = s.rtB;
+        p.baseSeparation[l] = s.baseSeparation;
+        p.normalMass[l] = s.normalMass;
+        p.tangentMass[l] = s.tangentMass;
+        p.normalImpulse[l] = s.normalImpulse;
+        p.tangentImpulse[l] = s.tangentImpulse;
+        p.maxNormalImpulse[l] = s.maxNormalImpulse;
+        p.relativeVelocity[l] = s.relativeVelocity;
+      }
+    }
+  }
+}
+
+template <int N>
+void storeBatches(std::span<const Batch<N>> batches, std::span<const std::int32_t> laneConstraint,
+                  std::span<ContactConstraint> constraints) {
+  for (std::size_t bi = 0; bi < batches.size(); ++bi) {
+    const Batch<N>& b = batches[bi];
+    for (int l = 0; l < N; ++l) {
+      const std::int32_t ci = laneConstraint[bi * N + static_cast<std::size_t>(l)];
+      if (ci < 0) continue;
+      ContactConstraint& cc = constraints[static_cast<std::size_t>(ci)];
+      for (int k = 0; k < cc.pointCount; ++k) {
+        ConstraintPoint& s = cc.points[k];
+        s.normalImpulse = b.p[k].normalImpulse[l];
+        s.tangentImpulse = b.p[k].tangentImpulse[l];
+        s.maxNormalImpulse = b.p[k].maxNormalImpulse[l];
+        s.relativeVelocity = b.p[k].relativeVelocity[l];
+      }
+    }
+  }
 }
 
 }  // namespace
@@ -256,7 +474,9 @@ ContactSoftness ContactSoftness::make(float h, float hertz, float dampingRatio, 
 }
 
 struct ContactSolver::Data {
-  std::vector<Batch> batches;
+  int lanes = 4;  // the width prepare() packed for
+  std::vector<Batch<4>> batches4;
+  std::vector<Batch<8>> batches8;
   std::vector<std::int32_t> laneConstraint;  // per batch lane: its constraint, -1 when empty
   std::vector<std::uint32_t> bodyColours;    // per body: the colours its constraints took
   std::vector<std::int32_t> colour;          // per constraint: its colour, kColours: overflow
@@ -271,6 +491,20 @@ int ContactSolver::colourCount() const {
 }
 int ContactSolver::overflowCount() const {
   return data_->overflow;
+}
+int ContactSolver::laneCount() const {
+  return data_->lanes;
+}
+
+int ContactSolver::widestLanes() {
+#if RC_HAVE_WIDE_SOLVER
+  static const bool wide = cpuHasWideSolver();
+  if (wide && laneLimit.load(std::memory_order_relaxed) >= 8) return 8;
+#endif
+  return 4;
+}
+void ContactSolver::limitLanes(int maxLanes) {
+  laneLimit.store(maxLanes, std::memory_order_relaxed);
 }
 
 void ContactSolver::prepare(std::span<const ContactConstraint> constraints, int bodyCount) {
@@ -306,108 +540,43 @@ void ContactSolver::prepare(std::span<const ContactConstraint> constraints, int 
     d.colours += perColour[k] > 0;
   d.overflow = perColour[kColours];
 
-  // Batches: each colour's constraints four at a time, then the overflow one at a time.
-  int firstBatch[kColours + 2] = {};
-  for (int k = 0; k < kColours; ++k)
-    firstBatch[k + 1] = firstBatch[k] + (perColour[k] + kLanes - 1) / kLanes;
-  firstBatch[kColours + 1] = firstBatch[kColours] + perColour[kColours];
-  const auto batchCount = static_cast<std::size_t>(firstBatch[kColours + 1]);
-  d.batches.resize(batchCount);
-  d.laneConstraint.assign(batchCount * kLanes, -1);
-  for (Batch& b : d.batches) {
-    b = Batch{};
-    b.points = 1;
-    std::fill(std::begin(b.a), std::end(b.a), bodyCount);
-    std::fill(std::begin(b.b), std::end(b.b), bodyCount);
-  }
-  int filled[kColours + 1] = {};
-  for (std::size_t i = 0; i < n; ++i) {
-    const int colour = d.colour[i];
-    const int at = filled[colour]++;
-    const int lanesPer = colour < kColours ? kLanes : 1;
-    const auto batch = static_cast<std::size_t>(firstBatch[colour] + at / lanesPer);
-    d.laneConstraint[batch * kLanes + static_cast<std::size_t>(at % lanesPer)] =
-        static_cast<std::int32_t>(i);
-  }
-  // Fill the lanes (empty lanes stay zero, so every impulse they compute is zero).
-  for (std::size_t bi = 0; bi < batchCount; ++bi) {
-    Batch& b = d.batches[bi];
-    for (int l = 0; l < kLanes; ++l) {
-      const std::int32_t ci = d.laneConstraint[bi * kLanes + static_cast<std::size_t>(l)];
-      if (ci < 0) continue;
-      const ContactConstraint& cc = constraints[static_cast<std::size_t>(ci)];
-      b.a[l] = cc.slotA >= 0 ? cc.slotA : bodyCount;
-      b.b[l] = cc.slotB >= 0 ? cc.slotB : bodyCount;
-      b.invMassA[l] = cc.invMassA;
-      b.invIA[l] = cc.invIA;
-      b.invMassB[l] = cc.invMassB;
-      b.invIB[l] = cc.invIB;
-      b.nx[l] = cc.normal.x;
-      b.ny[l] = cc.normal.y;
-      b.friction[l] = cc.friction;
-      b.k11[l] = cc.k11;
-      b.k12[l] = cc.k12;
-      b.k22[l] = cc.k22;
-      b.i11[l] = cc.i11;
-      b.i12[l] = cc.i12;
-      b.i22[l] = cc.i22;
-      b.block[l] = cc.pointCount == 2 && cc.blockSolve ? -1 : 0;
-      b.points = std::max(b.points, cc.pointCount);
-      for (int k = 0; k < cc.pointCount; ++k) {
-        const ConstraintPoint& s = cc.points[k];
-        PointLanes& p = b.p[k];
-        p.rAx[l] = s.rA.x;
-        p.rAy[l] = s.rA.y;
-        p.rBx[l] = s.rB.x;
-        p.rBy[l] = s.rB.y;
-        p.rnA[l] = s.rnA;
-        p.rnB[l] = s.rnB;
-        p.rtA[l] = s.rtA;
-        p.rtB[l] = s.rtB;
-        p.baseSeparation[l] = s.baseSeparation;
-        p.normalMass[l] = s.normalMass;
-        p.tangentMass[l] = s.tangentMass;
-        p.normalImpulse[l] = s.normalImpulse;
-        p.tangentImpulse[l] = s.tangentImpulse;
-        p.maxNormalImpulse[l] = s.maxNormalImpulse;
-        p.relativeVelocity[l] = s.relativeVelocity;
-      }
-    }
+  d.lanes = widestLanes();
+  if (d.lanes == 8) {
+    packBatches<8>(constraints, d.colour, perColour, bodyCount, d.batches8, d.laneConstraint);
+  } else {
+    packBatches<4>(constraints, d.colour, perColour, bodyCount, d.batches4, d.laneConstraint);
   }
 }
 
 void ContactSolver::warmStart(std::span<SolverBody> bodies) {
-  for (Batch& b : data_->batches)
-    warmStartBatch(b, bodies.data());
+  Data& d = *data_;
+#if RC_HAVE_WIDE_SOLVER
+  if (d.lanes == 8) {
+    warmStart8(d.batches8, bodies.data());
+    return;
+  }
+#endif
+  warmStart4(d.batches4, bodies.data());
 }
 
 void ContactSolver::solve(std::span<SolverBody> bodies, const ContactSoftness& soft, bool useBias,
                           bool backward) {
-  if (backward) {
-    for (std::size_t i = data_->batches.size(); i-- > 0;)
-      solveBatch(data_->batches[i], bodies.data(), soft, useBias);
-  } else {
-    for (Batch& b : data_->batches)
-      solveBatch(b, bodies.data(), soft, useBias);
+  Data& d = *data_;
+#if RC_HAVE_WIDE_SOLVER
+  if (d.lanes == 8) {
+    solve8(d.batches8, bodies.data(), soft, useBias, backward);
+    return;
   }
+#endif
+  solve4(d.batches4, bodies.data(), soft, useBias, backward);
 }
 
 void ContactSolver::store(std::span<ContactConstraint> constraints) const {
   const Data& d = *data_;
-  for (std::size_t bi = 0; bi < d.batches.size(); ++bi) {
-    const Batch& b = d.batches[bi];
-    for (int l = 0; l < kLanes; ++l) {
-      const std::int32_t ci = d.laneConstraint[bi * kLanes + static_cast<std::size_t>(l)];
-      if (ci < 0) continue;
-      ContactConstraint& cc = constraints[static_cast<std::size_t>(ci)];
-      for (int k = 0; k < cc.pointCount; ++k) {
-        ConstraintPoint& s = cc.points[k];
-        s.normalImpulse = b.p[k].normalImpulse[l];
-        s.tangentImpulse = b.p[k].tangentImpulse[l];
-        s.maxNormalImpulse = b.p[k].maxNormalImpulse[l];
-        s.relativeVelocity = b.p[k].relativeVelocity[l];
-      }
-    }
+  if (d.lanes == 8) {
+    storeBatches<8>(d.batches8, d.laneConstraint, constraints);
+  } else {
+    storeBatches<4>(d.batches4, d.laneConstraint, constraints);
   }
 }
 

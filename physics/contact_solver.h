@@ -2,12 +2,13 @@
 //
 // The world prepares one ContactConstraint per touching contact (anchors, effective masses,
 // warm-start impulses); this solver colours them so that no two constraints of one colour move
-// the same body, packs each colour four constraints to a batch (structure of arrays) and solves
-// a batch's four constraints side by side in 4-wide vectors (GCC/Clang vector extensions: SSE2
-// on x86-64, NEON on ARM, plain scalar code elsewhere). Constraints of one colour are
-// independent, so solving them together is exactly solving them one after the other: the
-// results do not depend on the vector width, and they are bit-identical on every build
-// (element-wise IEEE operations, no fused multiply-add, no approximate reciprocals).
+// the same body, packs each colour four or eight constraints to a batch (structure of arrays) and
+// solves a batch's constraints side by side in vectors (GCC/Clang vector extensions: eight lanes
+// in AVX2 code where the processor has it, chosen at run time; otherwise four, SSE2 on x86-64,
+// NEON on ARM, plain scalar code elsewhere). Constraints of one colour are independent, so
+// solving them together is exactly solving them one after the other: the results do not depend
+// on the vector width, and they are bit-identical on every build and processor (element-wise
+// IEEE operations, no fused multiply-add, no approximate reciprocals).
 //
 // A body with more contacts than there are colours puts its extra constraints in the overflow,
 // solved one to a batch after the colours. Static bodies (and kinematic ones, whose velocity no
@@ -95,6 +96,14 @@ class ContactSolver {
 
   int colourCount() const;    // colours in use
   int overflowCount() const;  // constraints solved one at a time
+  int laneCount() const;      // constraints per batch in the last prepare(): 4 or 8
+
+  // The batch width prepare() takes: 8 (one AVX2 register) where the processor has AVX2, else 4
+  // (SSE2, NEON), at most the limit set below. Either width gives bit-identical results.
+  static int widestLanes();
+  // Caps the width for every solver in the process from the next prepare() on (4: the baseline
+  // width on any processor), to check that a recording's hashes do not depend on it.
+  static void limitLanes(int maxLanes);
 
  private:
   struct Data;

@@ -1,7 +1,9 @@
 #pragma once
-// Four-wide float lanes through GCC/Clang vector extensions (SSE2 on x86-64, NEON on ARM): no
-// intrinsics, and element-wise IEEE arithmetic, so a lane gives bit for bit what the scalar
-// expression gives (the build has -ffp-contract=off).
+// Float lanes through GCC/Clang vector extensions: no intrinsics, and element-wise IEEE
+// arithmetic, so a lane gives bit for bit what the scalar expression gives (the build has
+// -ffp-contract=off). Four lanes are SSE2 on x86-64 and NEON on ARM; eight lanes are one AVX
+// register in a function compiled for AVX2 (see contact_solver.cpp) and two four-lane halves
+// anywhere else.
 #include <bit>
 #include <cstdint>
 
@@ -13,16 +15,44 @@ using F = float __attribute__((vector_size(16)));
 using M = std::int32_t __attribute__((vector_size(16)));
 inline constexpr int kLanes = 4;
 
-inline F splat(float x) {
-  return F{x, x, x, x};
+// Aligned to 32 bytes explicitly: compiled without AVX, GCC aligns a 32-byte vector to 16 only,
+// and the AVX2 code that loads it assumes 32.
+using F8 = float __attribute__((vector_size(32), aligned(32)));
+using M8 = std::int32_t __attribute__((vector_size(32), aligned(32)));
+
+// The float and mask vectors of N lanes.
+template <int N>
+struct Lanes;
+template <>
+struct Lanes<4> {
+  using F = simd::F;
+  using M = simd::M;
+};
+template <>
+struct Lanes<8> {
+  using F = F8;
+  using M = M8;
+};
+
+// The helpers below are always inlined, so that a caller compiled for a wider instruction set
+// (an AVX2 function) gets them in its own instructions.
+template <class V = F>
+[[gnu::always_inline]] inline V splat(float x) {
+  V v{};
+  for (int i = 0; i < static_cast<int>(sizeof(V) / sizeof(float)); ++i)
+    v[i] = x;
+  return v;
 }
-inline F select(M m, F a, F b) {
-  return std::bit_cast<F>((m & std::bit_cast<M>(a)) | (~m & std::bit_cast<M>(b)));
+template <class Mask, class V>
+[[gnu::always_inline]] inline V select(Mask m, V a, V b) {
+  return std::bit_cast<V>((m & std::bit_cast<Mask>(a)) | (~m & std::bit_cast<Mask>(b)));
 }
-inline F vmax(F a, F b) {
+template <class V>
+[[gnu::always_inline]] inline V vmax(V a, V b) {
   return a > b ? a : b;
 }
-inline F vmin(F a, F b) {
+template <class V>
+[[gnu::always_inline]] inline V vmin(V a, V b) {
   return a < b ? a : b;
 }
 

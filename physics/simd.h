@@ -35,7 +35,9 @@ struct Lanes<8> {
 };
 
 // The helpers below are always inlined, so that a caller compiled for a wider instruction set
-// (an AVX2 function) gets them in its own instructions.
+// (an AVX2 function) gets them in its own instructions, and they call no library function: in a
+// Debug build std::bit_cast is a real call, compiled without AVX, and an eight-lane vector
+// returned from it is returned by another convention than the AVX caller expects (it crashed).
 template <class V = F>
 [[gnu::always_inline]] inline V splat(float x) {
   V v{};
@@ -45,7 +47,8 @@ template <class V = F>
 }
 template <class Mask, class V>
 [[gnu::always_inline]] inline V select(Mask m, V a, V b) {
-  return std::bit_cast<V>((m & std::bit_cast<Mask>(a)) | (~m & std::bit_cast<Mask>(b)));
+  return __builtin_bit_cast(V,
+                            (m & __builtin_bit_cast(Mask, a)) | (~m & __builtin_bit_cast(Mask, b)));
 }
 template <class V>
 [[gnu::always_inline]] inline V vmax(V a, V b) {

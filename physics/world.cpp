@@ -1101,6 +1101,7 @@ void World::solve(float dt) {
   startAngle_.resize(slots);
   slotRound_.resize(slots);
   baseAccel_.resize(3 * slots);
+  damped_.clear();
   solverBodies_.assign(slots + 1, SolverBody{});  // the last: the null body
   for (std::size_t s = 0; s < slots; ++s) {
     const Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
@@ -1110,6 +1111,8 @@ void World::solve(float dt) {
     slotRound_[s] = b.round;
     // Gravity, force and torque do not change during the step: gathered once here, copied out
     // at every stage (the per-stage walk over the bodies was 8% of an arena step).
+    if (b.linearDamping > 0.0f || b.angularDamping > 0.0f)
+      damped_.push_back(static_cast<std::int32_t>(s));
     float* a = &baseAccel_[3 * s];
     if (b.type == BodyType::dynamicBody) {
       a[0] = b.gravityScale * def_.gravity.x + b.invMass * b.force.x;
@@ -1131,7 +1134,10 @@ void World::solve(float dt) {
     const std::span<double> q(q_.data(), 3 * slots);
     const std::span<float> v(v_.data(), 3 * slots);
     integrate<float, double>(def_.integrator, q, v, t, h, accel, scratch_);
-    for (std::size_t s = 0; s < slots; ++s) {
+    // (Only the damped bodies: reading every awake body's damping was a cache miss per body and
+    // substep: the 5000-circle arena 283 -> 271 ms for its run, 4%.)
+    for (const std::int32_t slot : damped_) {
+      const auto s = static_cast<std::size_t>(slot);
       const Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
       if (b.linearDamping > 0.0f) {
         const float f = 1.0f / (1.0f + h * b.linearDamping);

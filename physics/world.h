@@ -430,7 +430,8 @@ class World {
   // Body::round per slot, read each substep (a byte each: reading it from the bodies instead
   // cost the 5000-circle arena 2.5%).
   std::vector<std::uint8_t> slotRound_;
-  std::vector<float> baseAccel_;  // per awake slot: gravity, force and torque accelerations
+  std::vector<float> baseAccel_;      // per awake slot: gravity, force and torque accelerations
+  std::vector<std::int32_t> damped_;  // awake slots with linear or angular damping
   // Angles whose sine and cosine are wanted, taken in one batch (see rc::sincos), and the
   // bodies or slots they belong to.
   std::vector<float> turnAngles_;

@@ -362,99 +362,91 @@ bool cpuHasWideSolver() {
 
 std::atomic<int> laneLimit{8};
 
-// Fills a width's batches from the constraints: each colour's constraints N at a time, then
-// the overflow one at a time. Empty lanes stay zero, so every impulse they compute is zero.
+// Lays out a width's batches: each colour's constraints N at a time, then the overflow one at a
+// time; every lane's bodies and the batch's point count. A batch with an empty lane is zeroed
+// (an empty lane's impulses are then all zero); the others are written whole by writeLane.
 template <int N>
-void packBatches(std::span<const ContactConstraint> constraints,
-                 std::span<const std::int32_t> colour, const int (&perColour)[kColours + 1],
-                 int bodyCount, std::vector<Batch<N>>& batches,
-                 std::vector<std::int32_t>& laneConstraint) {
+void layoutBatches(std::span<const ConstraintBodies> constraints,
+                   std::span<const std::int32_t> colour, const int (&perColour)[kColours + 1],
+                   int bodyCount, std::vector<Batch<N>>& batches,
+                   std::vector<std::int32_t>& constraintLane) {
   int firstBatch[kColours + 2] = {};
   for (int k = 0; k < kColours; ++k)
     firstBatch[k + 1] = firstBatch[k] + (perColour[k] + N - 1) / N;
   firstBatch[kColours + 1] = firstBatch[kColours] + perColour[kColours];
   const auto batchCount = static_cast<std::size_t>(firstBatch[kColours + 1]);
   batches.resize(batchCount);
-  laneConstraint.assign(batchCount * N, -1);
-  for (Batch<N>& b : batches) {
-    b = Batch<N>{};
-    b.points = 1;
-    std::fill(std::begin(b.a), std::end(b.a), bodyCount);
-    std::fill(std::begin(b.b), std::end(b.b), bodyCount);
-  }
+  constraintLane.resize(constraints.size());
+  std::vector<std::uint8_t> full(batchCount, 0);  // lanes taken, per batch
   int filled[kColours + 1] = {};
   for (std::size_t i = 0; i < constraints.size(); ++i) {
     const int c = colour[i];
     const int at = filled[c]++;
     const int lanesPer = c < kColours ? N : 1;
-    const auto batch = static_cast<std::size_t>(firstBatch[c] + at / lanesPer);
-    laneConstraint[batch * N + static_cast<std::size_t>(at % lanesPer)] =
-        static_cast<std::int32_t>(i);
+    const int batch = firstBatch[c] + at / lanesPer;
+    constraintLane[i] = batch * N + at % lanesPer;
+    ++full[static_cast<std::size_t>(batch)];
   }
   for (std::size_t bi = 0; bi < batchCount; ++bi) {
     Batch<N>& b = batches[bi];
-    for (int l = 0; l < N; ++l) {
-      const std::int32_t ci = laneConstraint[bi * N + static_cast<std::size_t>(l)];
-      if (ci < 0) continue;
-      const ContactConstraint& cc = constraints[static_cast<std::size_t>(ci)];
-      b.a[l] = cc.slotA >= 0 ? cc.slotA : bodyCount;
-      b.b[l] = cc.slotB >= 0 ? cc.slotB : bodyCount;
-      b.invMassA[l] = cc.invMassA;
-      b.invIA[l] = cc.invIA;
-      b.invMassB[l] = cc.invMassB;
-      b.invIB[l] = cc.invIB;
-      b.nx[l] = cc.normal.x;
-      b.ny[l] = cc.normal.y;
-      b.friction[l] = cc.friction;
-      b.k11[l] = cc.k11;
-      b.k12[l] = cc.k12;
-      b.k22[l] = cc.k22;
-      b.i11[l] = cc.i11;
-      b.i12[l] = cc.i12;
-      b.i22[l] = cc.i22;
-      b.block[l] = cc.pointCount == 2 && cc.blockSolve ? -1 : 0;
-      b.points = std::max(b.points, cc.pointCount);
-      for (int k = 0; k < cc.pointCount; ++k) {
-        const ConstraintPoint& s = cc.points[k];
-        PointLanes<N>& p = b.p[k];
-        p.rAx[l] = s.rA.x;
-        p.rAy[l] = s.rA.y;
-        p.rBx[l] = s.rB.x;
-        p.rBy[l] = s.rB.y;
-        p.rnA[l] = s.rnA;
-        p.rnB[l] = s.rnB;
-        p.rtA[l] = s.rtA;
-        p.rtB[l] = s.rtB;
-        p.baseSeparation[l] = s.baseSeparation;
-        p.normalMass[l] = s.normalMass;
-        p.tangentMass[l] = s.tangentMass;
-        p.normalImpulse[l] = s.normalImpulse;
-        p.tangentImpulse[l] = s.tangentImpulse;
-        p.maxNormalImpulse[l] = s.maxNormalImpulse;
-        p.relativeVelocity[l] = s.relativeVelocity;
-      }
-    }
+    if (full[bi] < N) b = Batch<N>{};
+    b.points = 1;
+    std::fill(std::begin(b.a), std::end(b.a), bodyCount);
+    std::fill(std::begin(b.b), std::end(b.b), bodyCount);
+  }
+  for (std::size_t i = 0; i < constraints.size(); ++i) {
+    const ConstraintBodies& cb = constraints[i];
+    Batch<N>& b = batches[static_cast<std::size_t>(constraintLane[i] / N)];
+    const int l = constraintLane[i] % N;
+    b.a[l] = cb.slotA >= 0 ? cb.slotA : bodyCount;
+    b.b[l] = cb.slotB >= 0 ? cb.slotB : bodyCount;
+    b.points = std::max(b.points, cb.pointCount);
+  }
+}
+
+// One constraint into its lane: every field, and a missing second point as zeros where the
+// batch has two.
+template <int N>
+void writeLane(Batch<N>& b, int l, const ContactConstraint& cc) {
+  b.invMassA[l] = cc.invMassA;
+  b.invIA[l] = cc.invIA;
+  b.invMassB[l] = cc.invMassB;
+  b.invIB[l] = cc.invIB;
+  b.nx[l] = cc.normal.x;
+  b.ny[l] = cc.normal.y;
+  b.friction[l] = cc.friction;
+  b.k11[l] = cc.k11;
+  b.k12[l] = cc.k12;
+  b.k22[l] = cc.k22;
+  b.i11[l] = cc.i11;
+  b.i12[l] = cc.i12;
+  b.i22[l] = cc.i22;
+  b.block[l] = cc.pointCount == 2 && cc.blockSolve ? -1 : 0;
+  for (int k = 0; k < b.points; ++k) {
+    const ConstraintPoint s = k < cc.pointCount ? cc.points[k] : ConstraintPoint{};
+    PointLanes<N>& p = b.p[k];
+    p.rAx[l] = s.rA.x;
+    p.rAy[l] = s.rA.y;
+    p.rBx[l] = s.rB.x;
+    p.rBy[l] = s.rB.y;
+    p.rnA[l] = s.rnA;
+    p.rnB[l] = s.rnB;
+    p.rtA[l] = s.rtA;
+    p.rtB[l] = s.rtB;
+    p.baseSeparation[l] = s.baseSeparation;
+    p.normalMass[l] = s.normalMass;
+    p.tangentMass[l] = s.tangentMass;
+    p.normalImpulse[l] = s.normalImpulse;
+    p.tangentImpulse[l] = s.tangentImpulse;
+    p.maxNormalImpulse[l] = s.maxNormalImpulse;
+    p.relativeVelocity[l] = s.relativeVelocity;
   }
 }
 
 template <int N>
-void storeBatches(std::span<const Batch<N>> batches, std::span<const std::int32_t> laneConstraint,
-                  std::span<ContactConstraint> constraints) {
-  for (std::size_t bi = 0; bi < batches.size(); ++bi) {
-    const Batch<N>& b = batches[bi];
-    for (int l = 0; l < N; ++l) {
-      const std::int32_t ci = laneConstraint[bi * N + static_cast<std::size_t>(l)];
-      if (ci < 0) continue;
-      ContactConstraint& cc = constraints[static_cast<std::size_t>(ci)];
-      for (int k = 0; k < cc.pointCount; ++k) {
-        ConstraintPoint& s = cc.points[k];
-        s.normalImpulse = b.p[k].normalImpulse[l];
-        s.tangentImpulse = b.p[k].tangentImpulse[l];
-        s.maxNormalImpulse = b.p[k].maxNormalImpulse[l];
-        s.relativeVelocity = b.p[k].relativeVelocity[l];
-      }
-    }
-  }
+SolvedPoint readLane(const Batch<N>& b, int l, int k) {
+  const PointLanes<N>& p = b.p[k];
+  return {p.normalImpulse[l], p.tangentImpulse[l], p.maxNormalImpulse[l], p.relativeVelocity[l]};
 }
 
 }  // namespace
@@ -474,10 +466,10 @@ ContactSoftness ContactSoftness::make(float h, float hertz, float dampingRatio, 
 }
 
 struct ContactSolver::Data {
-  int lanes = 4;  // the width prepare() packed for
+  int lanes = 4;  // the width prepare() laid out
   std::vector<Batch<4>> batches4;
   std::vector<Batch<8>> batches8;
-  std::vector<std::int32_t> laneConstraint;  // per batch lane: its constraint, -1 when empty
+  std::vector<std::int32_t> constraintLane;  // per constraint: batch * lanes + lane
   std::vector<std::uint32_t> bodyColours;    // per body: the colours its constraints took
   std::vector<std::int32_t> colour;          // per constraint: its colour, kColours: overflow
   int colours = 0, overflow = 0;
@@ -507,7 +499,7 @@ void ContactSolver::limitLanes(int maxLanes) {
   laneLimit.store(maxLanes, std::memory_order_relaxed);
 }
 
-void ContactSolver::prepare(std::span<const ContactConstraint> constraints, int bodyCount) {
+void ContactSolver::prepare(std::span<const ConstraintBodies> constraints, int bodyCount) {
   Data& d = *data_;
   // Greedy colouring in constraint order: each takes the lowest colour neither of its moving
   // bodies has yet.
@@ -515,13 +507,9 @@ void ContactSolver::prepare(std::span<const ContactConstraint> constraints, int 
   d.bodyColours.assign(static_cast<std::size_t>(bodyCount), 0u);
   d.colour.resize(n);
   int perColour[kColours + 1] = {};
-  auto moves = [](std::int32_t slot, float invMass, float invI) {
-    return slot >= 0 && (invMass > 0.0f || invI > 0.0f);
-  };
   for (std::size_t i = 0; i < n; ++i) {
-    const ContactConstraint& cc = constraints[i];
-    const bool movesA = moves(cc.slotA, cc.invMassA, cc.invIA);
-    const bool movesB = moves(cc.slotB, cc.invMassB, cc.invIB);
+    const ConstraintBodies& cc = constraints[i];
+    const bool movesA = cc.slotA >= 0 && cc.movesA, movesB = cc.slotB >= 0 && cc.movesB;
     std::uint32_t used = 0;
     if (movesA) used |= d.bodyColours[static_cast<std::size_t>(cc.slotA)];
     if (movesB) used |= d.bodyColours[static_cast<std::size_t>(cc.slotB)];
@@ -542,10 +530,28 @@ void ContactSolver::prepare(std::span<const ContactConstraint> constraints, int 
 
   d.lanes = widestLanes();
   if (d.lanes == 8) {
-    packBatches<8>(constraints, d.colour, perColour, bodyCount, d.batches8, d.laneConstraint);
+    layoutBatches<8>(constraints, d.colour, perColour, bodyCount, d.batches8, d.constraintLane);
   } else {
-    packBatches<4>(constraints, d.colour, perColour, bodyCount, d.batches4, d.laneConstraint);
+    layoutBatches<4>(constraints, d.colour, perColour, bodyCount, d.batches4, d.constraintLane);
   }
+}
+
+void ContactSolver::set(std::size_t i, const ContactConstraint& constraint) {
+  Data& d = *data_;
+  const std::int32_t lane = d.constraintLane[i];
+  if (d.lanes == 8) {
+    writeLane(d.batches8[static_cast<std::size_t>(lane / 8)], lane % 8, constraint);
+  } else {
+    writeLane(d.batches4[static_cast<std::size_t>(lane / 4)], lane % 4, constraint);
+  }
+}
+
+SolvedPoint ContactSolver::solved(std::size_t i, int point) const {
+  const Data& d = *data_;
+  const std::int32_t lane = d.constraintLane[i];
+  if (d.lanes == 8)
+    return readLane(d.batches8[static_cast<std::size_t>(lane / 8)], lane % 8, point);
+  return readLane(d.batches4[static_cast<std::size_t>(lane / 4)], lane % 4, point);
 }
 
 void ContactSolver::warmStart(std::span<SolverBody> bodies) {
@@ -569,15 +575,6 @@ void ContactSolver::solve(std::span<SolverBody> bodies, const ContactSoftness& s
   }
 #endif
   solve4(d.batches4, bodies.data(), soft, useBias, backward);
-}
-
-void ContactSolver::store(std::span<ContactConstraint> constraints) const {
-  const Data& d = *data_;
-  if (d.lanes == 8) {
-    storeBatches<8>(d.batches8, d.laneConstraint, constraints);
-  } else {
-    storeBatches<4>(d.batches4, d.laneConstraint, constraints);
-  }
 }
 
 }  // namespace rc

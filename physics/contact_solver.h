@@ -15,6 +15,7 @@
 // contact changes) take no colour: any number of constraints of a colour may touch them.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -49,6 +50,20 @@ struct ContactConstraint {
   ConstraintPoint points[2];
 };
 
+// What the colouring needs of a constraint: its bodies' solver indices (-1: static or asleep),
+// whether contacts move them (dynamic: a kinematic body's velocity is not theirs to change), and
+// its point count.
+struct ConstraintBodies {
+  std::int32_t slotA, slotB;
+  bool movesA, movesB;
+  int pointCount;
+};
+
+// A point's results after the solve.
+struct SolvedPoint {
+  float normalImpulse, tangentImpulse, maxNormalImpulse, relativeVelocity;
+};
+
 // What the solver reads and writes of a body: its velocity, and how far it has moved and
 // turned since the constraints were prepared. 32 bytes, two vector rows.
 struct SolverBody {
@@ -77,10 +92,14 @@ class ContactSolver {
   ContactSolver(const ContactSolver&) = delete;
   ContactSolver& operator=(const ContactSolver&) = delete;
 
-  // Colours and packs the constraints. bodyCount bodies are indexed by slotA / slotB; the
-  // solver bodies passed to the calls below have one more entry at the end, the null body
-  // (zero velocity, no motion), which static bodies and empty lanes point at.
-  void prepare(std::span<const ContactConstraint> constraints, int bodyCount);
+  // Colours the constraints and lays out their batches; each constraint is then written into
+  // its lane by set(i, ...), before the first warmStart. bodyCount bodies are indexed by slotA /
+  // slotB; the solver bodies passed to the calls below have one more entry at the end, the null
+  // body (zero velocity, no motion), which static bodies and empty lanes point at.
+  void prepare(std::span<const ConstraintBodies> constraints, int bodyCount);
+  // Constraint i (in prepare's order): straight into the batch's lanes, with no array of
+  // constraints in between (copying one and repacking it was a sixth of a pyramid's step).
+  void set(std::size_t i, const ContactConstraint& constraint);
   // Applies the carried impulses, and lowers each point's relativeVelocity to its normal
   // velocity now (the approach speed restitution reverses).
   void warmStart(std::span<SolverBody> bodies);
@@ -91,8 +110,9 @@ class ContactSolver {
   // 3 mm when each pass runs the other way from the one before (symmetric Gauss-Seidel).
   void solve(std::span<SolverBody> bodies, const ContactSoftness& soft, bool useBias,
              bool backward);
-  // The impulses, maxNormalImpulse and relativeVelocity back into the constraints.
-  void store(std::span<ContactConstraint> constraints) const;
+  // Point `point` of constraint i after the solve: its impulses, maxNormalImpulse and
+  // relativeVelocity.
+  SolvedPoint solved(std::size_t i, int point) const;
 
   int colourCount() const;    // colours in use
   int overflowCount() const;  // constraints solved one at a time

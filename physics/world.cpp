@@ -972,7 +972,7 @@ void World::accelerations(std::span<const double> q, std::span<const float> v, f
 
 template <class Solve>
 void World::forEachConstraint(Solve&& solve) {
-  for (ContactConstraint& cc : constraints_) {
+  for (ContactConstraint& cc : bouncy_) {
     Vec2 vA{}, vB{};
     float wA = 0.0f, wB = 0.0f;
     const std::size_t iA = 3 * static_cast<std::size_t>(std::max(cc.slotA, 0));
@@ -1013,22 +1013,42 @@ void World::applyRestitution() {
 
 void World::solve(float dt) {
   const auto slots = static_cast<std::size_t>(awakeCount_);
-  // Prepare: one constraint per touching contact, anchors from the centres of mass.
-  constraints_.clear();
+  // Prepare: one constraint per touching contact with an awake side, anchors from the centres of
+  // mass. The solver colours them first (it needs only their bodies), then each constraint is
+  // prepared straight into its lane.
+  constraintSources_.clear();
+  constraintBodies_.clear();
+  bouncy_.clear();
+  bouncyIndex_.clear();
   profile_.colours = profile_.overflow = 0;
   if (slots == 0) return;  // nothing awake: nothing to solve
   for (std::size_t ci = 0; ci < contacts_.size(); ++ci) {
     const Contact& c = contacts_[ci];
     if (!c.touching) continue;
-    const Body& a =
-        bodies_[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(c.shapeA)].body)];
-    const Body& b =
-        bodies_[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(c.shapeB)].body)];
+    const std::int32_t bodyA = shapes_[static_cast<std::size_t>(c.shapeA)].body;
+    const std::int32_t bodyB = shapes_[static_cast<std::size_t>(c.shapeB)].body;
+    const Body& a = bodies_[static_cast<std::size_t>(bodyA)];
+    const Body& b = bodies_[static_cast<std::size_t>(bodyB)];
+    const std::int32_t slotA = awake(a) ? a.slot : -1, slotB = awake(b) ? b.slot : -1;
+    if (slotA < 0 && slotB < 0) continue;  // asleep against asleep or static
+    constraintSources_.push_back({static_cast<std::int32_t>(ci), bodyA, bodyB});
+    constraintBodies_.push_back({slotA, slotB, a.invMass > 0.0f || a.invInertia > 0.0f,
+                                 b.invMass > 0.0f || b.invInertia > 0.0f, c.manifold.pointCount});
+  }
+  contactSolver_.prepare(constraintBodies_, static_cast<int>(slots));
+  profile_.colours = contactSolver_.colourCount();
+  profile_.overflow = contactSolver_.overflowCount();
+
+  for (std::size_t i = 0; i < constraintSources_.size(); ++i) {
+    const ConstraintSource& source = constraintSources_[i];
+    const auto ci = static_cast<std::size_t>(source.contact);
+    const Contact& c = contacts_[ci];
+    const Body& a = bodies_[static_cast<std::size_t>(source.bodyA)];
+    const Body& b = bodies_[static_cast<std::size_t>(source.bodyB)];
     ContactConstraint cc;
-    cc.contact = static_cast<std::int32_t>(ci);
-    cc.slotA = awake(a) ? a.slot : -1;
-    cc.slotB = awake(b) ? b.slot : -1;
-    if (cc.slotA < 0 && cc.slotB < 0) continue;  // asleep against asleep or static
+    cc.contact = source.contact;
+    cc.slotA = constraintBodies_[i].slotA;
+    cc.slotB = constraintBodies_[i].slotB;
     // A sleeping body stays put for this step: it counts as static (and the solver's null body,
     // which static sides share, must never be moved).
     cc.invMassA = cc.slotA >= 0 ? a.invMass : 0.0f;
@@ -1090,12 +1110,12 @@ void World::solve(float dt) {
         cc.i22 = cc.k11 / det;
       }
     }
-    constraints_.push_back(cc);
+    contactSolver_.set(i, cc);
+    if (cc.restitution != 0.0f) {
+      bouncy_.push_back(cc);
+      bouncyIndex_.push_back(static_cast<std::int32_t>(i));
+    }
   }
-
-  contactSolver_.prepare(constraints_, static_cast<int>(slots));
-  profile_.colours = contactSolver_.colourCount();
-  profile_.overflow = contactSolver_.overflowCount();
 
   startCenter_.resize(2 * slots);
   startAngle_.resize(slots);
@@ -1193,14 +1213,32 @@ void World::solve(float dt) {
       v_[3 * s + 2] = solverBodies_[s].w;
     }
   }
-  contactSolver_.store(constraints_);
-  applyRestitution();
-  for (const ContactConstraint& cc : constraints_) {
-    Contact& c = contacts_[static_cast<std::size_t>(cc.contact)];
-    for (int k = 0; k < cc.pointCount; ++k) {
-      c.normalImpulse[k] = cc.points[k].normalImpulse;
-      c.tangentImpulse[k] = cc.points[k].tangentImpulse;
+  // The impulses back into the contacts, for the next step's warm start; restitution first, for
+  // the constraints that have it (in the constraints' order).
+  for (std::size_t i = 0; i < constraintSources_.size(); ++i) {
+    Contact& c = contacts_[static_cast<std::size_t>(constraintSources_[i].contact)];
+    for (int k = 0; k < c.manifold.pointCount; ++k) {
+      const SolvedPoint p = contactSolver_.solved(i, k);
+      c.normalImpulse[k] = p.normalImpulse;
+      c.tangentImpulse[k] = p.tangentImpulse;
     }
+  }
+  if (bouncy_.empty()) return;
+  for (std::size_t j = 0; j < bouncy_.size(); ++j) {
+    ContactConstraint& cc = bouncy_[j];
+    for (int k = 0; k < cc.pointCount; ++k) {
+      const SolvedPoint p = contactSolver_.solved(static_cast<std::size_t>(bouncyIndex_[j]), k);
+      cc.points[k].normalImpulse = p.normalImpulse;
+      cc.points[k].tangentImpulse = p.tangentImpulse;
+      cc.points[k].maxNormalImpulse = p.maxNormalImpulse;
+      cc.points[k].relativeVelocity = p.relativeVelocity;
+    }
+  }
+  applyRestitution();
+  for (const ContactConstraint& cc : bouncy_) {
+    Contact& c = contacts_[static_cast<std::size_t>(cc.contact)];
+    for (int k = 0; k < cc.pointCount; ++k)
+      c.normalImpulse[k] = cc.points[k].normalImpulse;
   }
 }
 

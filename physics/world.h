@@ -418,7 +418,15 @@ class World {
   // Bodies created, moved or given a velocity since the last step: their proxies are stretched
   // along their first step's motion before pairs are found.
   std::vector<std::int32_t> pendingRefit_;
-  std::vector<ContactConstraint> constraints_;
+  // The step's constraints, in the solver's order: the contact and bodies of each, and what
+  // the solver's colouring needs; the constraints with restitution, whole, and their indices.
+  struct ConstraintSource {
+    std::int32_t contact, bodyA, bodyB;
+  };
+  std::vector<ConstraintSource> constraintSources_;
+  std::vector<ConstraintBodies> constraintBodies_;
+  std::vector<ContactConstraint> bouncy_;
+  std::vector<std::int32_t> bouncyIndex_;
   ContactSolver contactSolver_;
   // Per slot during the solve: the free-motion velocities of the substep, and the solver's
   // bodies (velocity, and how far each has moved and turned since the constraints were

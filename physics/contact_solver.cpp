@@ -404,8 +404,8 @@ void layoutBatches(std::span<const ConstraintBodies> constraints,
   }
 }
 
-// One constraint into its lane: every field, and a missing second point as zeros where the
-// batch has two.
+// One constraint into its lane: what the caller sets, and a missing second point as zeros
+// where the batch has two. `block` holds "has two points" until computeMasses.
 template <int N>
 void writeLane(Batch<N>& b, int l, const ContactConstraint& cc) {
   b.invMassA[l] = cc.invMassA;
@@ -415,39 +415,98 @@ void writeLane(Batch<N>& b, int l, const ContactConstraint& cc) {
   b.nx[l] = cc.normal.x;
   b.ny[l] = cc.normal.y;
   b.friction[l] = cc.friction;
-  b.k11[l] = cc.k11;
-  b.k12[l] = cc.k12;
-  b.k22[l] = cc.k22;
-  b.i11[l] = cc.i11;
-  b.i12[l] = cc.i12;
-  b.i22[l] = cc.i22;
-  b.block[l] = cc.pointCount == 2 && cc.blockSolve ? -1 : 0;
+  b.block[l] = cc.pointCount == 2 ? -1 : 0;
   for (int k = 0; k < b.points; ++k) {
-    const ConstraintPoint s = k < cc.pointCount ? cc.points[k] : ConstraintPoint{};
     PointLanes<N>& p = b.p[k];
-    p.rAx[l] = s.rA.x;
-    p.rAy[l] = s.rA.y;
-    p.rBx[l] = s.rB.x;
-    p.rBy[l] = s.rB.y;
-    p.rnA[l] = s.rnA;
-    p.rnB[l] = s.rnB;
-    p.rtA[l] = s.rtA;
-    p.rtB[l] = s.rtB;
-    p.baseSeparation[l] = s.baseSeparation;
-    p.normalMass[l] = s.normalMass;
-    p.tangentMass[l] = s.tangentMass;
-    p.normalImpulse[l] = s.normalImpulse;
-    p.tangentImpulse[l] = s.tangentImpulse;
-    p.maxNormalImpulse[l] = s.maxNormalImpulse;
-    p.relativeVelocity[l] = s.relativeVelocity;
+    const bool set = k < cc.pointCount;
+    const ConstraintPoint& s = cc.points[k];
+    p.rAx[l] = set ? s.rA.x : 0.0f;
+    p.rAy[l] = set ? s.rA.y : 0.0f;
+    p.rBx[l] = set ? s.rB.x : 0.0f;
+    p.rBy[l] = set ? s.rB.y : 0.0f;
+    p.baseSeparation[l] = set ? s.baseSeparation : 0.0f;
+    p.normalImpulse[l] = set ? s.normalImpulse : 0.0f;
+    p.tangentImpulse[l] = set ? s.tangentImpulse : 0.0f;
+    p.maxNormalImpulse[l] = set ? s.maxNormalImpulse : 0.0f;
+    p.relativeVelocity[l] = set ? s.relativeVelocity : 0.0f;
   }
 }
 
+// The derived fields of a batch (see ContactSolver::computeMasses). Element by element the same
+// operations in the same order as the scalar expressions they replace, so the same bits; a
+// missing point's are zero.
 template <int N>
-SolvedPoint readLane(const Batch<N>& b, int l, int k) {
-  const PointLanes<N>& p = b.p[k];
-  return {p.normalImpulse[l], p.tangentImpulse[l], p.maxNormalImpulse[l], p.relativeVelocity[l]};
+RC_INLINE void massesBatch(Batch<N>& c) {
+  using F = typename simd::Lanes<N>::F;
+  using M = typename simd::Lanes<N>::M;
+  const M two = c.block;
+  const F m = c.invMassA + c.invMassB;
+  const F tx = c.ny, ty = -c.nx;
+  F kNormal[2];
+  for (int k = 0; k < c.points; ++k) {
+    PointLanes<N>& p = c.p[k];
+    const M present = k == 0 ? ~M{} : two;
+    // rA x n, rA x t, ...; K = mA + mB + iA (rA x n)^2 + iB (rB x n)^2, its inverse where K > 0.
+    p.rnA = select(present, p.rAx * c.ny - p.rAy * c.nx, F{});
+    p.rnB = select(present, p.rBx * c.ny - p.rBy * c.nx, F{});
+    kNormal[k] = m + c.invIA * p.rnA * p.rnA + c.invIB * p.rnB * p.rnB;
+    p.normalMass = select(present & (kNormal[k] > 0.0f), 1.0f / kNormal[k], F{});
+    p.rtA = select(present, p.rAx * ty - p.rAy * tx, F{});
+    p.rtB = select(present, p.rBx * ty - p.rBy * tx, F{});
+    const F kTangent = m + c.invIA * p.rtA * p.rtA + c.invIB * p.rtB * p.rtB;
+    p.tangentMass = select(present & (kTangent > 0.0f), 1.0f / kTangent, F{});
+  }
+  if (c.points == 1) {
+    c.k11 = c.k12 = c.k22 = c.i11 = c.i12 = c.i22 = F{};
+    c.block = M{};
+    return;
+  }
+  // The two points' coupled effective mass, and whether it is well conditioned enough to solve
+  // both at once (two points nearly on top of each other make it singular).
+  const PointLanes<N>&p0 = c.p[0], &p1 = c.p[1];
+  const F k11 = kNormal[0], k22 = kNormal[1];
+  const F k12 = m + c.invIA * p0.rnA * p1.rnA + c.invIB * p0.rnB * p1.rnB;
+  const F det = k11 * k22 - k12 * k12;
+  const M block = two & (k11 * k11 < 1000.0f * det);
+  c.k11 = select(two, k11, F{});
+  c.k12 = select(two, k12, F{});
+  c.k22 = select(two, k22, F{});
+  c.i11 = select(block, k22 / det, F{});
+  c.i12 = select(block, -k12 / det, F{});
+  c.i22 = select(block, k11 / det, F{});
+  c.block = block;
 }
+
+template <int N>
+ConstraintPoint readLane(const Batch<N>& b, int l, int k) {
+  const PointLanes<N>& p = b.p[k];
+  ConstraintPoint out;
+  out.rA = {p.rAx[l], p.rAy[l]};
+  out.rB = {p.rBx[l], p.rBy[l]};
+  out.rnA = p.rnA[l];
+  out.rnB = p.rnB[l];
+  out.rtA = p.rtA[l];
+  out.rtB = p.rtB[l];
+  out.baseSeparation = p.baseSeparation[l];
+  out.normalMass = p.normalMass[l];
+  out.tangentMass = p.tangentMass[l];
+  out.normalImpulse = p.normalImpulse[l];
+  out.tangentImpulse = p.tangentImpulse[l];
+  out.maxNormalImpulse = p.maxNormalImpulse[l];
+  out.relativeVelocity = p.relativeVelocity[l];
+  return out;
+}
+
+void masses4(std::span<Batch<4>> batches) {
+  for (Batch<4>& b : batches)
+    massesBatch(b);
+}
+#if RC_HAVE_WIDE_SOLVER
+[[gnu::target("avx2")]] void masses8(std::span<Batch<8>> batches) {
+  for (Batch<8>& b : batches)
+    massesBatch(b);
+}
+#endif
 
 }  // namespace
 
@@ -546,12 +605,34 @@ void ContactSolver::set(std::size_t i, const ContactConstraint& constraint) {
   }
 }
 
-SolvedPoint ContactSolver::solved(std::size_t i, int point) const {
+ConstraintPoint ContactSolver::point(std::size_t i, int point) const {
   const Data& d = *data_;
   const std::int32_t lane = d.constraintLane[i];
   if (d.lanes == 8)
     return readLane(d.batches8[static_cast<std::size_t>(lane / 8)], lane % 8, point);
   return readLane(d.batches4[static_cast<std::size_t>(lane / 4)], lane % 4, point);
+}
+
+SolvedPoint ContactSolver::solved(std::size_t i, int point) const {
+  const Data& d = *data_;
+  const std::int32_t lane = d.constraintLane[i];
+  const auto read = [&](const auto& b, int l) -> SolvedPoint {
+    const auto& p = b.p[point];
+    return {p.normalImpulse[l], p.tangentImpulse[l], p.maxNormalImpulse[l], p.relativeVelocity[l]};
+  };
+  if (d.lanes == 8) return read(d.batches8[static_cast<std::size_t>(lane / 8)], lane % 8);
+  return read(d.batches4[static_cast<std::size_t>(lane / 4)], lane % 4);
+}
+
+void ContactSolver::computeMasses() {
+  Data& d = *data_;
+#if RC_HAVE_WIDE_SOLVER
+  if (d.lanes == 8) {
+    masses8(d.batches8);
+    return;
+  }
+#endif
+  masses4(d.batches4);
 }
 
 void ContactSolver::warmStart(std::span<SolverBody> bodies) {

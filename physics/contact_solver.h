@@ -25,14 +25,16 @@
 
 namespace rc {
 
-// One point of a touching contact, prepared for the substeps.
+// One point of a touching contact, prepared for the substeps. The caller sets the anchors, the
+// separation, the carried impulses and relativeVelocity (maxNormalImpulse starts at 0); the
+// solver derives the lever arms and effective masses, eight (or four) constraints at a time.
 struct ConstraintPoint {
   Vec2 rA, rB;  // anchors from the centres of mass at the start of the step
-  // rA x n, rB x n, rA x t, rB x t: a point's velocity along n is dot(vB - vA, n) +
+  // Derived: rA x n, rB x n, rA x t, rB x t: a point's velocity along n is dot(vB - vA, n) +
   // wB (rB x n) - wA (rA x n), and an impulse along n turns A by -iA (rA x n) per unit.
   float rnA, rnB, rtA, rtB;
   float baseSeparation;
-  float normalMass, tangentMass;
+  float normalMass, tangentMass;  // derived
   float normalImpulse, tangentImpulse, maxNormalImpulse;
   float relativeVelocity;  // normal velocity before the solve, for restitution
 };
@@ -44,9 +46,6 @@ struct ContactConstraint {
   Vec2 normal;
   float friction, restitution;
   int pointCount;
-  float k11 = 0, k12 = 0, k22 = 0;  // two points' coupled effective mass K
-  float i11 = 0, i12 = 0, i22 = 0;  // and its inverse
-  bool blockSolve = false;
   ConstraintPoint points[2];
 };
 
@@ -97,9 +96,14 @@ class ContactSolver {
   // slotB; the solver bodies passed to the calls below have one more entry at the end, the null
   // body (zero velocity, no motion), which static bodies and empty lanes point at.
   void prepare(std::span<const ConstraintBodies> constraints, int bodyCount);
-  // Constraint i (in prepare's order): straight into the batch's lanes, with no array of
-  // constraints in between (copying one and repacking it was a sixth of a pyramid's step).
+  // Constraint i (in prepare's order), what the caller sets of it (see ConstraintPoint):
+  // straight into the batch's lanes, with no array of constraints in between (copying one and
+  // repacking it was a sixth of a pyramid's step).
   void set(std::size_t i, const ContactConstraint& constraint);
+  // After the last set(): each point's lever arms and effective masses, and where a manifold's
+  // two points can be solved together, their coupled mass and its inverse; a batch at a time
+  // (scalar, with its divisions, this was a tenth of a pyramid's step).
+  void computeMasses();
   // Applies the carried impulses, and lowers each point's relativeVelocity to its normal
   // velocity now (the approach speed restitution reverses).
   void warmStart(std::span<SolverBody> bodies);
@@ -113,6 +117,8 @@ class ContactSolver {
   // Point `point` of constraint i after the solve: its impulses, maxNormalImpulse and
   // relativeVelocity.
   SolvedPoint solved(std::size_t i, int point) const;
+  // The whole point, derived fields included (restitution needs its lever arms and mass).
+  ConstraintPoint point(std::size_t i, int point) const;
 
   int colourCount() const;    // colours in use
   int overflowCount() const;  // constraints solved one at a time

@@ -1068,47 +1068,17 @@ void World::solve(float dt) {
                                          v_[3 * static_cast<std::size_t>(cc.slotB) + 1]}
                                   : Vec2{};
     const float wB = cc.slotB >= 0 ? v_[3 * static_cast<std::size_t>(cc.slotB) + 2] : 0.0f;
-    const Vec2 t = rightPerp(cc.normal);
     for (int k = 0; k < cc.pointCount; ++k) {
       const ManifoldPoint& mp = c.manifold.points[k];
       ConstraintPoint& p = cc.points[k];
       p.rA = mp.anchorA - offsetA;
       p.rB = mp.anchorB - offsetB;
       p.baseSeparation = mp.separation;
-      const float rnA = cross(p.rA, cc.normal), rnB = cross(p.rB, cc.normal);
-      p.rnA = rnA;
-      p.rnB = rnB;
-      const float kNormal = cc.invMassA + cc.invMassB + cc.invIA * rnA * rnA + cc.invIB * rnB * rnB;
-      p.normalMass = kNormal > 0.0f ? 1.0f / kNormal : 0.0f;
-      const float rtA = cross(p.rA, t), rtB = cross(p.rB, t);
-      p.rtA = rtA;
-      p.rtB = rtB;
-      const float kTangent =
-          cc.invMassA + cc.invMassB + cc.invIA * rtA * rtA + cc.invIB * rtB * rtB;
-      p.tangentMass = kTangent > 0.0f ? 1.0f / kTangent : 0.0f;
       p.normalImpulse = c.normalImpulse[k];
       p.tangentImpulse = c.tangentImpulse[k];
       p.maxNormalImpulse = 0.0f;
       const Vec2 dv = (vB + cross(wB, p.rB)) - (vA + cross(wA, p.rA));
       p.relativeVelocity = dot(dv, cc.normal);
-    }
-    if (cc.pointCount == 2) {
-      // The points' coupled effective mass, and whether it is well conditioned enough to solve
-      // both at once (two points nearly on top of each other make it singular).
-      const ConstraintPoint &p0 = cc.points[0], &p1 = cc.points[1];
-      const float rn0A = cross(p0.rA, cc.normal), rn0B = cross(p0.rB, cc.normal);
-      const float rn1A = cross(p1.rA, cc.normal), rn1B = cross(p1.rB, cc.normal);
-      const float m = cc.invMassA + cc.invMassB;
-      cc.k11 = m + cc.invIA * rn0A * rn0A + cc.invIB * rn0B * rn0B;
-      cc.k22 = m + cc.invIA * rn1A * rn1A + cc.invIB * rn1B * rn1B;
-      cc.k12 = m + cc.invIA * rn0A * rn1A + cc.invIB * rn0B * rn1B;
-      const float det = cc.k11 * cc.k22 - cc.k12 * cc.k12;
-      cc.blockSolve = cc.k11 * cc.k11 < 1000.0f * det;
-      if (cc.blockSolve) {
-        cc.i11 = cc.k22 / det;
-        cc.i12 = -cc.k12 / det;
-        cc.i22 = cc.k11 / det;
-      }
     }
     contactSolver_.set(i, cc);
     if (cc.restitution != 0.0f) {
@@ -1116,6 +1086,7 @@ void World::solve(float dt) {
       bouncyIndex_.push_back(static_cast<std::int32_t>(i));
     }
   }
+  contactSolver_.computeMasses();
 
   startCenter_.resize(2 * slots);
   startAngle_.resize(slots);
@@ -1226,13 +1197,8 @@ void World::solve(float dt) {
   if (bouncy_.empty()) return;
   for (std::size_t j = 0; j < bouncy_.size(); ++j) {
     ContactConstraint& cc = bouncy_[j];
-    for (int k = 0; k < cc.pointCount; ++k) {
-      const SolvedPoint p = contactSolver_.solved(static_cast<std::size_t>(bouncyIndex_[j]), k);
-      cc.points[k].normalImpulse = p.normalImpulse;
-      cc.points[k].tangentImpulse = p.tangentImpulse;
-      cc.points[k].maxNormalImpulse = p.maxNormalImpulse;
-      cc.points[k].relativeVelocity = p.relativeVelocity;
-    }
+    for (int k = 0; k < cc.pointCount; ++k)
+      cc.points[k] = contactSolver_.point(static_cast<std::size_t>(bouncyIndex_[j]), k);
   }
   applyRestitution();
   for (const ContactConstraint& cc : bouncy_) {

@@ -9,7 +9,6 @@
 #include "physics/contact_solver.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cstddef>
 #include <cstring>
 #include <vector>
@@ -344,8 +343,7 @@ void solve4(std::span<Batch<4>> batches, SolverBody* bodies, const ContactSoftne
   solveAll(batches, bodies, soft, useBias, backward);
 }
 
-#if defined(__x86_64__) || defined(__i386__)
-#define RC_HAVE_WIDE_SOLVER 1
+#if RC_HAVE_AVX2_PATHS
 [[gnu::target("avx2")]] void warmStart8(std::span<Batch<8>> batches, SolverBody* bodies) {
   warmStartAll(batches, bodies);
 }
@@ -353,14 +351,7 @@ void solve4(std::span<Batch<4>> batches, SolverBody* bodies, const ContactSoftne
                                     const ContactSoftness& soft, bool useBias, bool backward) {
   solveAll(batches, bodies, soft, useBias, backward);
 }
-bool cpuHasWideSolver() {
-  return __builtin_cpu_supports("avx2");
-}
-#else
-#define RC_HAVE_WIDE_SOLVER 0
 #endif
-
-std::atomic<int> laneLimit{8};
 
 // Lays out a width's batches: each colour's constraints N at a time, then the overflow one at a
 // time; every lane's bodies and the batch's point count. A batch with an empty lane is zeroed
@@ -501,7 +492,7 @@ void masses4(std::span<Batch<4>> batches) {
   for (Batch<4>& b : batches)
     massesBatch(b);
 }
-#if RC_HAVE_WIDE_SOLVER
+#if RC_HAVE_AVX2_PATHS
 [[gnu::target("avx2")]] void masses8(std::span<Batch<8>> batches) {
   for (Batch<8>& b : batches)
     massesBatch(b);
@@ -548,14 +539,10 @@ int ContactSolver::laneCount() const {
 }
 
 int ContactSolver::widestLanes() {
-#if RC_HAVE_WIDE_SOLVER
-  static const bool wide = cpuHasWideSolver();
-  if (wide && laneLimit.load(std::memory_order_relaxed) >= 8) return 8;
-#endif
-  return 4;
+  return simd::avx2Enabled() ? 8 : 4;
 }
 void ContactSolver::limitLanes(int maxLanes) {
-  laneLimit.store(maxLanes, std::memory_order_relaxed);
+  simd::enableAvx2(maxLanes >= 8);
 }
 
 void ContactSolver::prepare(std::span<const ConstraintBodies> constraints, int bodyCount) {
@@ -626,7 +613,7 @@ SolvedPoint ContactSolver::solved(std::size_t i, int point) const {
 
 void ContactSolver::computeMasses() {
   Data& d = *data_;
-#if RC_HAVE_WIDE_SOLVER
+#if RC_HAVE_AVX2_PATHS
   if (d.lanes == 8) {
     masses8(d.batches8);
     return;
@@ -637,7 +624,7 @@ void ContactSolver::computeMasses() {
 
 void ContactSolver::warmStart(std::span<SolverBody> bodies) {
   Data& d = *data_;
-#if RC_HAVE_WIDE_SOLVER
+#if RC_HAVE_AVX2_PATHS
   if (d.lanes == 8) {
     warmStart8(d.batches8, bodies.data());
     return;
@@ -649,7 +636,7 @@ void ContactSolver::warmStart(std::span<SolverBody> bodies) {
 void ContactSolver::solve(std::span<SolverBody> bodies, const ContactSoftness& soft, bool useBias,
                           bool backward) {
   Data& d = *data_;
-#if RC_HAVE_WIDE_SOLVER
+#if RC_HAVE_AVX2_PATHS
   if (d.lanes == 8) {
     solve8(d.batches8, bodies.data(), soft, useBias, backward);
     return;

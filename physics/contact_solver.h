@@ -128,7 +128,8 @@ class ContactSolver {
   // (SSE2, NEON), at most the limit set below. Either width gives bit-identical results.
   static int widestLanes();
   // Caps the width for every solver in the process from the next prepare() on (4: the baseline
-  // width on any processor), to check that a recording's hashes do not depend on it.
+  // width on any processor), to check that a recording's hashes do not depend on it. 4 also
+  // turns off the other AVX2 paths (simd::enableAvx2).
   static void limitLanes(int maxLanes);
 
  private:

@@ -1,10 +1,19 @@
+#if defined(__clang__)
+#pragma clang diagnostic ignored "-Wunknown-warning-option"
+#endif
+// sincos4 keeps its vectors inside itself: no AVX vector crosses a call (see contact_solver.cpp).
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 #include "physics/trig.h"
 
 #include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <limits>
+
+#include "physics/simd.h"
 
 namespace rc {
 namespace {
@@ -121,9 +130,88 @@ SinCos sincos(float radians) {
   return sincosInline(radians);
 }
 
+#if RC_HAVE_AVX2_PATHS
+// Four angles at a time in AVX2 doubles: both paths of sincosInline (the short series and the
+// reduced one) for every lane, element by element the same operations in the same order, and
+// the lane's own path chosen by mask; so each lane is bit for bit sincosInline's result. A group
+// with an angle that is not finite or beyond 2^24 goes one by one. Returns how many were done.
+using D4 = double __attribute__((vector_size(32), aligned(32)));
+using I4 = std::int64_t __attribute__((vector_size(32), aligned(32)));
+using F4 = float __attribute__((vector_size(16)));
+using M4 = std::int32_t __attribute__((vector_size(16)));
+
+[[gnu::target("avx2")]] std::size_t sincos4(const float* radians, SinCos* out, std::size_t n) {
+  constexpr auto kSign = static_cast<std::int64_t>(0x8000000000000000ull);
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    F4 xf;
+    std::memcpy(&xf, radians + i, sizeof xf);
+    const D4 x = __builtin_convertvector(xf, D4);
+    const D4 ax = __builtin_bit_cast(D4, __builtin_bit_cast(I4, x) & ~kSign);
+    const I4 ordinary = ax <= 0x1p24;  // false for NaN and infinities too
+    if (!(ordinary[0] & ordinary[1] & ordinary[2] & ordinary[3])) {
+      for (std::size_t j = i; j < i + 4; ++j)
+        out[j] = sincosInline(radians[j]);
+      continue;
+    }
+    // The short series.
+    const D4 x2 = x * x;
+    const D4 sSmall = x + x * x2 * (-1.0 / 6.0 + x2 * (1.0 / 120.0 + x2 * (-1.0 / 5040.0)));
+    const D4 cSmall = 1.0 - x2 * (0.5 + x2 * (-1.0 / 24.0 + x2 * (1.0 / 720.0)));
+    // The reduction: k = roundToInteger(x 2/pi), the magic sum's low bits are |k|.
+    const D4 v = x * kTwoOverPi;
+    const I4 vSign = __builtin_bit_cast(I4, v) & kSign;
+    const D4 magicSum = __builtin_bit_cast(D4, __builtin_bit_cast(I4, v) & ~kSign) + 0x1p52 * 1.5;
+    const D4 k = __builtin_bit_cast(D4, __builtin_bit_cast(I4, magicSum - 0x1p52 * 1.5) | vSign);
+    const D4 r = ((x - k * kPio2Hi) - k * kPio2Mid) - k * kPio2Lo;
+    // sinCosPoly's two lanes, one vector each.
+    const D4 r2 = r * r;
+    D4 ps = D4{} * r2 + 1.0 / 6227020800.0;
+    D4 pc = 1.0 / 87178291200.0 + D4{};
+    pc = pc * r2 + -1.0 / 479001600.0;
+    ps = ps * r2 + -1.0 / 39916800.0;
+    pc = pc * r2 + 1.0 / 3628800.0;
+    ps = ps * r2 + 1.0 / 362880.0;
+    pc = pc * r2 + -1.0 / 40320.0;
+    ps = ps * r2 + -1.0 / 5040.0;
+    pc = pc * r2 + 1.0 / 720.0;
+    ps = ps * r2 + 1.0 / 120.0;
+    pc = pc * r2 + -1.0 / 24.0;
+    ps = ps * r2 + -1.0 / 6.0;
+    pc = pc * r2 + 0.5;
+    const F4 s = __builtin_convertvector(r + r * r2 * ps, F4);
+    const F4 c = __builtin_convertvector(1.0 - r2 * pc, F4);
+    // The quadrant k mod 4 of a signed k from |k| mod 4.
+    const I4 kAbs = __builtin_bit_cast(I4, magicSum) & 3;
+    const I4 quadrant = vSign != 0 ? (4 - kAbs) & 3 : kAbs;
+    const M4 q = __builtin_convertvector(quadrant, M4);
+    const M4 odd = (q & 1) != 0;
+    const M4 negateSine = q >= 2, negateCosine = (q == 1) | (q == 2);
+    const M4 small = __builtin_convertvector(ax < 0.0625, M4);
+    const auto bits = [](F4 f) { return __builtin_bit_cast(M4, f); };
+    constexpr std::int32_t kFloatSign = std::numeric_limits<std::int32_t>::min();
+    const M4 sineFull = ((odd & bits(c)) | (~odd & bits(s))) ^ (negateSine & kFloatSign);
+    const M4 cosineFull = ((odd & bits(s)) | (~odd & bits(c))) ^ (negateCosine & kFloatSign);
+    const F4 sine = __builtin_bit_cast(
+        F4, (small & bits(__builtin_convertvector(sSmall, F4))) | (~small & sineFull));
+    const F4 cosine = __builtin_bit_cast(
+        F4, (small & bits(__builtin_convertvector(cSmall, F4))) | (~small & cosineFull));
+    const F4 low = __builtin_shufflevector(sine, cosine, 0, 4, 1, 5);
+    const F4 high = __builtin_shufflevector(sine, cosine, 2, 6, 3, 7);
+    std::memcpy(static_cast<void*>(out + i), &low, sizeof low);
+    std::memcpy(static_cast<void*>(out + i + 2), &high, sizeof high);
+  }
+  return i;
+}
+#endif
+
 void sincos(std::span<const float> radians, std::span<SinCos> out) {
   const std::size_t n = radians.size() < out.size() ? radians.size() : out.size();
-  for (std::size_t i = 0; i < n; ++i)
+  std::size_t i = 0;
+#if RC_HAVE_AVX2_PATHS
+  if (simd::avx2Enabled()) i = sincos4(radians.data(), out.data(), n);
+#endif
+  for (; i < n; ++i)
     out[i] = sincosInline(radians[i]);
 }
 

@@ -1,7 +1,9 @@
 #include "physics/toi.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 namespace rc {
 
@@ -95,7 +97,10 @@ CastOutput shapeCast(const ShapeProxy& a, const Transform& xfA, Vec2 translation
 
 Transform sweepTransform(const Sweep& s, float t) {
   Vec2 c = lerp(s.c1, s.c2, t);
-  Rot q = Rot::fromAngle(s.a1 + t * (s.a2 - s.a1));
+  // A sweep that does not turn from angle +0 (the world sweeps round bodies so) takes no sine
+  // and cosine: Rot{} is sincos(+0)'s result, bit for bit.
+  const float angle = s.a1 + t * (s.a2 - s.a1);
+  const Rot q = std::bit_cast<std::uint32_t>(angle) == 0u ? Rot{} : Rot::fromAngle(angle);
   return {c - rotate(q, s.localCenter), q};
 }
 

@@ -324,6 +324,50 @@ TEST(World, FastBodiesDoNotTunnelThroughThinWalls) {
   }
 }
 
+// A small fast ball between two walls, no gravity, restitution 1: continuous collision stops it
+// at each wall (5 mm short), and the next step's contact sends it back. It must keep crossing:
+// a time of impact at fraction 0 (the ball still at the target separation where the last
+// impact left it, now moving away) once froze it at the first wall for good, its velocity
+// flipping and growing at every step.
+TEST(World, FastBallKeepsBouncingBetweenWalls) {
+  for (bool bullet : {false, true}) {
+    rc::WorldDef def;
+    def.gravity = {0, 0};
+    def.enableSleep = false;
+    rc::World w(def);
+    rc::ShapeDef wallDef;
+    wallDef.restitution = 1.0f;
+    wallDef.friction = 0.0f;
+    for (float x : {-5.5f, 5.5f}) {
+      rc::BodyDef wall;
+      wall.position = {x, 0};
+      w.createShape(w.createBody(wall), rc::makeBox(0.5f, 5), wallDef);
+    }
+    rc::BodyDef ballDef = dynamicAt({0, 0});
+    ballDef.bullet = bullet;
+    ballDef.linearVelocity = {100, 0};
+    const BodyId ball = w.createBody(ballDef);
+    w.createShape(ball, rc::makeCircle({}, 0.05f), wallDef);
+    int crossings = 0;  // times the ball passed the middle
+    float speedMax = 0.0f;
+    float x = 0.0f;
+    for (int k = 0; k < 120; ++k) {
+      w.step(1.0f / 60.0f);
+      const float now = w.worldCenter(ball).x;
+      crossings += (x < 0.0f) != (now < 0.0f);
+      x = now;
+      speedMax = std::max(speedMax, rc::length(w.linearVelocity(ball)));
+      ASSERT_LT(std::abs(now), 5.0f) << "step " << k;
+    }
+    // 2 s at 100 m/s over 9.9 m from wall to wall: 20 crossings (the stops at the walls cost a
+    // little of each step).
+    std::printf("%s: %d crossings in 2 s, fastest %.2f m/s\n", bullet ? "bullet" : "plain",
+                crossings, speedMax);
+    EXPECT_GE(crossings, 15) << bullet;
+    EXPECT_LE(speedMax, 100.0f * 1.001f) << bullet;
+  }
+}
+
 // With nothing touching, a body follows the world's integrator exactly: a spring pulling a
 // body to the origin stepped by the world and by the integrator directly (float velocities,
 // double positions, as the world keeps them) give the same numbers.

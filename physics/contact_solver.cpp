@@ -368,19 +368,21 @@ void layoutBatches(std::span<const ConstraintBodies> constraints,
   const auto batchCount = static_cast<std::size_t>(firstBatch[kColours + 1]);
   batches.resize(batchCount);
   constraintLane.resize(constraints.size());
-  std::vector<std::uint8_t> full(batchCount, 0);  // lanes taken, per batch
   int filled[kColours + 1] = {};
   for (std::size_t i = 0; i < constraints.size(); ++i) {
     const int c = colour[i];
     const int at = filled[c]++;
     const int lanesPer = c < kColours ? N : 1;
-    const int batch = firstBatch[c] + at / lanesPer;
-    constraintLane[i] = batch * N + at % lanesPer;
-    ++full[static_cast<std::size_t>(batch)];
+    constraintLane[i] = (firstBatch[c] + at / lanesPer) * N + at % lanesPer;
   }
-  for (std::size_t bi = 0; bi < batchCount; ++bi) {
-    Batch<N>& b = batches[bi];
-    if (full[bi] < N) b = Batch<N>{};
+  // The batches with an empty lane: a colour's last when its count is not a multiple of N,
+  // and every overflow batch (one lane taken).
+  for (int k = 0; k < kColours; ++k)
+    if (perColour[k] % N != 0)
+      batches[static_cast<std::size_t>(firstBatch[k + 1] - 1)] = Batch<N>{};
+  for (std::size_t bi = static_cast<std::size_t>(firstBatch[kColours]); bi < batchCount; ++bi)
+    batches[bi] = Batch<N>{};
+  for (Batch<N>& b : batches) {
     b.points = 1;
     std::fill(std::begin(b.a), std::end(b.a), bodyCount);
     std::fill(std::begin(b.b), std::end(b.b), bodyCount);
@@ -525,6 +527,18 @@ struct ContactSolver::Data {
   int colours = 0, overflow = 0;
 };
 
+namespace {
+
+// Constraint i's batch and lane, at the width prepare() laid out: f(batch, lane).
+template <class SolverData, class Visit>
+decltype(auto) atLane(SolverData& d, std::size_t i, Visit&& f) {
+  const auto lane = static_cast<std::size_t>(d.constraintLane[i]);
+  if (d.lanes == 8) return f(d.batches8[lane / 8], static_cast<int>(lane % 8));
+  return f(d.batches4[lane / 4], static_cast<int>(lane % 4));
+}
+
+}  // namespace
+
 ContactSolver::ContactSolver() : data_(std::make_unique<Data>()) {}
 ContactSolver::~ContactSolver() = default;
 
@@ -583,32 +597,20 @@ void ContactSolver::prepare(std::span<const ConstraintBodies> constraints, int b
 }
 
 void ContactSolver::set(std::size_t i, const ContactConstraint& constraint) {
-  Data& d = *data_;
-  const std::int32_t lane = d.constraintLane[i];
-  if (d.lanes == 8) {
-    writeLane(d.batches8[static_cast<std::size_t>(lane / 8)], lane % 8, constraint);
-  } else {
-    writeLane(d.batches4[static_cast<std::size_t>(lane / 4)], lane % 4, constraint);
-  }
+  atLane(*data_, i, [&](auto& batch, int lane) { writeLane(batch, lane, constraint); });
 }
 
 ConstraintPoint ContactSolver::point(std::size_t i, int point) const {
-  const Data& d = *data_;
-  const std::int32_t lane = d.constraintLane[i];
-  if (d.lanes == 8)
-    return readLane(d.batches8[static_cast<std::size_t>(lane / 8)], lane % 8, point);
-  return readLane(d.batches4[static_cast<std::size_t>(lane / 4)], lane % 4, point);
+  return atLane(*data_, i,
+                [&](const auto& batch, int lane) { return readLane(batch, lane, point); });
 }
 
 SolvedPoint ContactSolver::solved(std::size_t i, int point) const {
-  const Data& d = *data_;
-  const std::int32_t lane = d.constraintLane[i];
-  const auto read = [&](const auto& b, int l) -> SolvedPoint {
-    const auto& p = b.p[point];
-    return {p.normalImpulse[l], p.tangentImpulse[l], p.maxNormalImpulse[l], p.relativeVelocity[l]};
-  };
-  if (d.lanes == 8) return read(d.batches8[static_cast<std::size_t>(lane / 8)], lane % 8);
-  return read(d.batches4[static_cast<std::size_t>(lane / 4)], lane % 4);
+  return atLane(*data_, i, [&](const auto& batch, int lane) -> SolvedPoint {
+    const auto& p = batch.p[point];
+    return {p.normalImpulse[lane], p.tangentImpulse[lane], p.maxNormalImpulse[lane],
+            p.relativeVelocity[lane]};
+  });
 }
 
 void ContactSolver::computeMasses() {

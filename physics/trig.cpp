@@ -38,17 +38,37 @@ struct SinCosD {
   double sine, cosine;
 };
 
+// Horner's rule from the highest term: sine's (over r: 1/13! r^12 .. -1/3! r^2) and cosine's
+// (1/14! r^14 .. 1/2 r^2). Shared by the one-angle and the four-angle paths.
+constexpr double kSineTerms[6] = {1.0 / 6227020800.0, -1.0 / 39916800.0, 1.0 / 362880.0,
+                                  -1.0 / 5040.0,      1.0 / 120.0,       -1.0 / 6.0};
+constexpr double kCosineTerms[7] = {1.0 / 87178291200.0,
+                                    -1.0 / 479001600.0,
+                                    1.0 / 3628800.0,
+                                    -1.0 / 40320.0,
+                                    1.0 / 720.0,
+                                    -1.0 / 24.0,
+                                    0.5};
+
 SinCosD sinCosPoly(double r) {
   const double r2 = r * r;
   const Double2 x{r2, r2};
-  Double2 p{0.0, 1.0 / 87178291200.0};                          // cos: 1/14!
-  p = p * x + Double2{1.0 / 6227020800.0, -1.0 / 479001600.0};  // sin: 1/13!; cos: 1/12!
-  p = p * x + Double2{-1.0 / 39916800.0, 1.0 / 3628800.0};
-  p = p * x + Double2{1.0 / 362880.0, -1.0 / 40320.0};
-  p = p * x + Double2{-1.0 / 5040.0, 1.0 / 720.0};
-  p = p * x + Double2{1.0 / 120.0, -1.0 / 24.0};
-  p = p * x + Double2{-1.0 / 6.0, 0.5};
+  Double2 p{0.0, kCosineTerms[0]};
+  for (int j = 0; j < 6; ++j)
+    p = p * x + Double2{kSineTerms[j], kCosineTerms[j + 1]};
   return {r + r * r2 * p[0], 1.0 - r2 * p[1]};
+}
+
+// The short series for |x| < 1/16 (see sincosInline), for a double or a vector of doubles.
+template <class D>
+[[gnu::always_inline]] inline D smallSine(D x) {
+  const D x2 = x * x;
+  return x + x * x2 * (-1.0 / 6.0 + x2 * (1.0 / 120.0 + x2 * (-1.0 / 5040.0)));
+}
+template <class D>
+[[gnu::always_inline]] inline D smallCosine(D x) {
+  const D x2 = x * x;
+  return 1.0 - x2 * (0.5 + x2 * (-1.0 / 24.0 + x2 * (1.0 / 720.0)));
 }
 
 // atan on [0, 1]: shifted by pi/4 when t > tan(pi/8) so |u| <= tan(pi/8) ~= 0.4142, then the
@@ -101,12 +121,8 @@ float negateIf(bool flip, float a) {
   // omitted terms, x^9/9! < 2e-16 and x^8/8! < 6e-15 at |x| = 1/16, are far below float
   // precision, so the result is the full path's except where the double falls within 6e-15 of
   // a float rounding boundary. A settling pyramid's turns cost a third of the full path.
-  if (std::fabs(x) < 0.0625) {
-    const double x2 = x * x;
-    const double s = x + x * x2 * (-1.0 / 6.0 + x2 * (1.0 / 120.0 + x2 * (-1.0 / 5040.0)));
-    const double c = 1.0 - x2 * (0.5 + x2 * (-1.0 / 24.0 + x2 * (1.0 / 720.0)));
-    return {static_cast<float>(s), static_cast<float>(c)};
-  }
+  if (std::fabs(x) < 0.0625)
+    return {static_cast<float>(smallSine(x)), static_cast<float>(smallCosine(x))};
   // From 2^24 on, floats are 2 rad or more apart and the three-part pi/2 runs out of digits
   // (at 1e20 the reduced angle would be thousands of radians and the polynomials overflow):
   // take the exact remainder by 2 pi (the double nearest) first, so the result stays a
@@ -154,10 +170,7 @@ using M4 = std::int32_t __attribute__((vector_size(16)));
         out[j] = sincosInline(radians[j]);
       continue;
     }
-    // The short series.
-    const D4 x2 = x * x;
-    const D4 sSmall = x + x * x2 * (-1.0 / 6.0 + x2 * (1.0 / 120.0 + x2 * (-1.0 / 5040.0)));
-    const D4 cSmall = 1.0 - x2 * (0.5 + x2 * (-1.0 / 24.0 + x2 * (1.0 / 720.0)));
+    const D4 sSmall = smallSine(x), cSmall = smallCosine(x);
     // The reduction: k = roundToInteger(x 2/pi), the magic sum's low bits are |k|.
     const D4 v = x * kTwoOverPi;
     const I4 vSign = __builtin_bit_cast(I4, v) & kSign;
@@ -166,19 +179,11 @@ using M4 = std::int32_t __attribute__((vector_size(16)));
     const D4 r = ((x - k * kPio2Hi) - k * kPio2Mid) - k * kPio2Lo;
     // sinCosPoly's two lanes, one vector each.
     const D4 r2 = r * r;
-    D4 ps = D4{} * r2 + 1.0 / 6227020800.0;
-    D4 pc = 1.0 / 87178291200.0 + D4{};
-    pc = pc * r2 + -1.0 / 479001600.0;
-    ps = ps * r2 + -1.0 / 39916800.0;
-    pc = pc * r2 + 1.0 / 3628800.0;
-    ps = ps * r2 + 1.0 / 362880.0;
-    pc = pc * r2 + -1.0 / 40320.0;
-    ps = ps * r2 + -1.0 / 5040.0;
-    pc = pc * r2 + 1.0 / 720.0;
-    ps = ps * r2 + 1.0 / 120.0;
-    pc = pc * r2 + -1.0 / 24.0;
-    ps = ps * r2 + -1.0 / 6.0;
-    pc = pc * r2 + 0.5;
+    D4 ps{}, pc = kCosineTerms[0] + D4{};
+    for (int j = 0; j < 6; ++j) {
+      ps = ps * r2 + kSineTerms[j];
+      pc = pc * r2 + kCosineTerms[j + 1];
+    }
     const F4 s = __builtin_convertvector(r + r * r2 * ps, F4);
     const F4 c = __builtin_convertvector(1.0 - r2 * pc, F4);
     // The quadrant k mod 4 of a signed k from |k| mod 4.

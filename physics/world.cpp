@@ -195,11 +195,15 @@ void World::applyTurns(Apply&& apply) {
   turnOwners_.clear();
 }
 
-std::array<double, 2> World::preciseOrigin(const Body& b) const {
-  if (b.slot < 0) return {b.xf.p.x, b.xf.p.y};
-  const auto i = 3 * static_cast<std::size_t>(b.slot);
+double World::preciseOrigin(const Body& b, int axis) const {
+  if (b.slot < 0) return axis == 0 ? b.xf.p.x : b.xf.p.y;
   const Vec2 turned = rotate(b.xf.q, b.localCenter);
-  return {q_[i] - turned.x, q_[i + 1] - turned.y};
+  return q_[3 * static_cast<std::size_t>(b.slot) + static_cast<std::size_t>(axis)] -
+         static_cast<double>(axis == 0 ? turned.x : turned.y);
+}
+
+std::array<double, 2> World::preciseOrigin(const Body& b) const {
+  return {preciseOrigin(b, 0), preciseOrigin(b, 1)};
 }
 
 BodyId World::createBody(const BodyDef& def) {
@@ -876,22 +880,11 @@ void World::narrowphase(float dt) {
     // In A's frame translated to A's origin, B placed by the difference of the two origins
     // taken in double: far from the world origin the float origins are too coarse (1 mm apart
     // 10 km out) for the separations a resting contact needs.
-    // (Component by component, without the std::array of preciseOrigin: the arrays went through
-    // memory, and their difference was one vector load of two scalars just stored, a
-    // store-forwarding stall that was a fifth of this loop.)
-    auto originX = [&](const Body& b) {
-      return b.slot < 0 ? static_cast<double>(b.xf.p.x)
-                        : q_[3 * static_cast<std::size_t>(b.slot)] -
-                              static_cast<double>(rotate(b.xf.q, b.localCenter).x);
-    };
-    auto originY = [&](const Body& b) {
-      return b.slot < 0 ? static_cast<double>(b.xf.p.y)
-                        : q_[3 * static_cast<std::size_t>(b.slot) + 1] -
-                              static_cast<double>(rotate(b.xf.q, b.localCenter).y);
-    };
+    // (By component: as two arrays the origins went through memory, and their difference was
+    // one vector load of two scalars just stored, a store-forwarding stall, a fifth of this loop.)
     const Transform xfA{{}, bodyA.xf.q};
-    const Transform xfB{{static_cast<float>(originX(bodyB) - originX(bodyA)),
-                         static_cast<float>(originY(bodyB) - originY(bodyA))},
+    const Transform xfB{{static_cast<float>(preciseOrigin(bodyB, 0) - preciseOrigin(bodyA, 0)),
+                         static_cast<float>(preciseOrigin(bodyB, 1) - preciseOrigin(bodyA, 1))},
                         bodyB.xf.q};
     const Manifold old = c.manifold;
     const float oldNormal[2] = {c.normalImpulse[0], c.normalImpulse[1]};
@@ -1100,10 +1093,10 @@ void World::solve(float dt) {
     startCenter_[2 * s + 1] = q_[3 * s + 1];
     startAngle_[s] = q_[3 * s + 2];
     slotRound_[s] = b.round;
-    // Gravity, force and torque do not change during the step: gathered once here, copied out
-    // at every stage (the per-stage walk over the bodies was 8% of an arena step).
     if (b.linearDamping > 0.0f || b.angularDamping > 0.0f)
       damped_.push_back(static_cast<std::int32_t>(s));
+    // Gravity, force and torque do not change during the step: gathered once here, copied out
+    // at every stage (the per-stage walk over the bodies was 8% of an arena step).
     float* a = &baseAccel_[3 * s];
     if (b.type == BodyType::dynamicBody) {
       a[0] = b.gravityScale * def_.gravity.x + b.invMass * b.force.x;
@@ -1311,9 +1304,10 @@ void World::continuous() {
   fastSlots_.clear();
   for (std::size_t s = 0; s < slots; ++s) {
     const Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
-    if (!fast(b, sweepOf(b))) continue;
+    const Sweep full = sweepOf(b);
+    if (!fast(b, full)) continue;
     fastSlots_.push_back(static_cast<std::int32_t>(s));
-    const Sweep sweep = shapeSweep(b, sweepOf(b));
+    const Sweep sweep = shapeSweep(b, full);
     const Transform xf1 = sweepTransform(sweep, 0.0f), xf2 = sweepTransform(sweep, 1.0f);
     for (std::int32_t own : b.shapes) {
       const ShapeRecord& mine = shapes_[static_cast<std::size_t>(own)];
@@ -1351,8 +1345,9 @@ void World::continuous() {
   // (and may no longer be fast).
   for (std::int32_t s : fastSlots_) {
     Body& b = bodies_[static_cast<std::size_t>(slotBody_[static_cast<std::size_t>(s)])];
-    if (!fast(b, sweepOf(b))) continue;
-    const Sweep sweep = shapeSweep(b, sweepOf(b));
+    const Sweep full = sweepOf(b);
+    if (!fast(b, full)) continue;
+    const Sweep sweep = shapeSweep(b, full);
     const Transform xf1 = sweepTransform(sweep, 0.0f), xf2 = sweepTransform(sweep, 1.0f);
     float first = 1.0f;
     std::int32_t hitBody = -1;  // a moving body hit first, if any

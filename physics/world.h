@@ -385,6 +385,7 @@ class World {
   // The body's origin in double (its centre minus the turned local centre): what the
   // narrowphase takes differences of.
   std::array<double, 2> preciseOrigin(const Body& b) const;
+  double preciseOrigin(const Body& b, int axis) const;  // one component: 0 x, 1 y
   // An awake body's motion over the step so far, from where it started (float: for sweeps).
   Sweep stepSweep(const Body& b) const;
   bool isRound(const Body& b) const;  // see Body::round

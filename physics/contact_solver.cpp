@@ -169,20 +169,28 @@ struct Velocities {
 };
 
 template <int N>
-RC_INLINE void warmStartBatch(Batch<N>& c, SolverBody* bodies) {
+RC_INLINE void warmStartBatch(Batch<N>& c, SolverBody* bodies, const SolverBody* free) {
   using F = typename simd::Lanes<N>::F;
   const BodyLanes<N> A = gather<N, false>(bodies, c.a), B = gather<N, false>(bodies, c.b);
   Velocities<N> v{A.vx, A.vy, A.w, B.vx, B.vy, B.w};
   const F tx = c.ny, ty = -c.nx;
-  // The approach speed restitution reverses: the fastest free-motion normal velocity of the
-  // step until the solver first pushes the point, which includes what gravity added before
-  // the impact. Later substeps' velocities carry what the solver did to neighbouring contacts
-  // and are not an approach: restitution on those fed a cluster of overlapping circles
-  // energy, step after step.
-  for (int k = 0; k < c.points; ++k) {
-    PointLanes<N>& p = c.p[k];
-    const F vn = vmin(p.relativeVelocity, v.along(c.nx, c.ny, p.rnA, p.rnB));
-    p.relativeVelocity = select(p.maxNormalImpulse > 0.0f, p.relativeVelocity, vn);
+  // The approach speed restitution reverses: the fastest normal velocity of the step's free
+  // motion until the solver first pushes the point, which includes what gravity added before
+  // the impact. Read from the substep's free velocities, before any warm start: the bodies
+  // here already carry the warm starts of earlier batches, a kick the solve takes back out
+  // (a bullet resting on a floor and hit by another read the floor's carried impulse as 370
+  // m/s of approach, where the free motion had 220, and the pair bounced apart with more
+  // energy than they met with). Later substeps' velocities carry what the solver did to
+  // neighbouring contacts and are not an approach: restitution on those fed a cluster of
+  // overlapping circles energy, step after step.
+  if (free != nullptr) {
+    const BodyLanes<N> fA = gather<N, false>(free, c.a), fB = gather<N, false>(free, c.b);
+    const Velocities<N> fv{fA.vx, fA.vy, fA.w, fB.vx, fB.vy, fB.w};
+    for (int k = 0; k < c.points; ++k) {
+      PointLanes<N>& p = c.p[k];
+      const F vn = vmin(p.relativeVelocity, fv.along(c.nx, c.ny, p.rnA, p.rnB));
+      p.relativeVelocity = select(p.maxNormalImpulse > 0.0f, p.relativeVelocity, vn);
+    }
   }
   for (int k = 0; k < c.points; ++k) {
     const PointLanes<N>& p = c.p[k];
@@ -319,9 +327,10 @@ RC_INLINE void solveBatch(Batch<N>& c, SolverBody* bodies, const ContactSoftness
 // The passes over every batch, inlined into one function per lane count: four lanes in the
 // baseline instruction set, eight in a function compiled for AVX2 (chosen at run time).
 template <int N>
-RC_INLINE void warmStartAll(std::span<Batch<N>> batches, SolverBody* bodies) {
+RC_INLINE void warmStartAll(std::span<Batch<N>> batches, SolverBody* bodies,
+                            const SolverBody* free) {
   for (Batch<N>& b : batches)
-    warmStartBatch(b, bodies);
+    warmStartBatch(b, bodies, free);
 }
 template <int N>
 RC_INLINE void solveAll(std::span<Batch<N>> batches, SolverBody* bodies,
@@ -335,8 +344,8 @@ RC_INLINE void solveAll(std::span<Batch<N>> batches, SolverBody* bodies,
   }
 }
 
-void warmStart4(std::span<Batch<4>> batches, SolverBody* bodies) {
-  warmStartAll(batches, bodies);
+void warmStart4(std::span<Batch<4>> batches, SolverBody* bodies, const SolverBody* free) {
+  warmStartAll(batches, bodies, free);
 }
 void solve4(std::span<Batch<4>> batches, SolverBody* bodies, const ContactSoftness& soft,
             bool useBias, bool backward) {
@@ -344,8 +353,9 @@ void solve4(std::span<Batch<4>> batches, SolverBody* bodies, const ContactSoftne
 }
 
 #if RC_HAVE_AVX2_PATHS
-[[gnu::target("avx2")]] void warmStart8(std::span<Batch<8>> batches, SolverBody* bodies) {
-  warmStartAll(batches, bodies);
+[[gnu::target("avx2")]] void warmStart8(std::span<Batch<8>> batches, SolverBody* bodies,
+                                        const SolverBody* free) {
+  warmStartAll(batches, bodies, free);
 }
 [[gnu::target("avx2")]] void solve8(std::span<Batch<8>> batches, SolverBody* bodies,
                                     const ContactSoftness& soft, bool useBias, bool backward) {
@@ -624,15 +634,16 @@ void ContactSolver::computeMasses() {
   masses4(d.batches4);
 }
 
-void ContactSolver::warmStart(std::span<SolverBody> bodies) {
+void ContactSolver::warmStart(std::span<SolverBody> bodies, std::span<const SolverBody> free) {
   Data& d = *data_;
+  const SolverBody* approach = free.empty() ? nullptr : free.data();
 #if RC_HAVE_AVX2_PATHS
   if (d.lanes == 8) {
-    warmStart8(d.batches8, bodies.data());
+    warmStart8(d.batches8, bodies.data(), approach);
     return;
   }
 #endif
-  warmStart4(d.batches4, bodies.data());
+  warmStart4(d.batches4, bodies.data(), approach);
 }
 
 void ContactSolver::solve(std::span<SolverBody> bodies, const ContactSoftness& soft, bool useBias,

@@ -104,9 +104,10 @@ class ContactSolver {
   // two points can be solved together, their coupled mass and its inverse; a batch at a time
   // (scalar, with its divisions, this was a tenth of a pyramid's step).
   void computeMasses();
-  // Applies the carried impulses, and lowers each point's relativeVelocity to its normal
-  // velocity now (the approach speed restitution reverses).
-  void warmStart(std::span<SolverBody> bodies);
+  // Applies the carried impulses. With `free` (the bodies' velocities before any warm start,
+  // laid out like `bodies`), first lowers each point not yet pushed to its normal velocity there
+  // (relativeVelocity: the approach speed restitution reverses); empty: no restitution to feed.
+  void warmStart(std::span<SolverBody> bodies, std::span<const SolverBody> free);
   // One pass of normal (the two points of a manifold together where that is well posed) and
   // friction impulses. useBias: push overlapping points apart (the relax pass has no bias).
   // backward: the colours in reverse order. Gauss-Seidel in one fixed order favours one side:

@@ -7,7 +7,9 @@
 //                 points by feature id (contacts whose fat AABBs parted are destroyed); points
 //                 are kept while the shapes are within what their bodies can close this step
 //                 (speculative contacts), so a fast body stops at the surface instead of
-//                 sinking into it and bouncing from inside
+//                 sinking into it and bouncing from inside; a fast pair's points are taken
+//                 where its motion makes them meet (the normal of the impact), or dropped if
+//                 it never does (no ghost collisions between bodies that pass close by)
 //   solve         prepare the contact constraints, then substeps of: free motion by the world's
 //                 integrator (forces evaluated at its stages), warm start, solve contacts (soft),
 //                 positions corrected by the velocity the contacts changed, relax; then
@@ -143,7 +145,9 @@ struct WorldHit {
 
 // Events of the last step, read after it (cleared at the start of the next). A contact begins
 // when its manifold gets points: within the speculative margin, which for a fast body can be
-// the step before the surfaces meet; approachSpeed is measured then, before the solve.
+// the step before the surfaces meet (then the point and normal are those where they will meet,
+// and a fast pair that will not meet this step gets none); approachSpeed is measured then,
+// before the solve.
 struct ContactBeginEvent {
   ShapeId shapeA, shapeB;
   Vec2 point{}, normal{};   // normal from A to B
@@ -371,6 +375,8 @@ class World {
   void refitBody(Body& b, Vec2 displacement);
   void updatePairs();
   void narrowphase(float dt);
+  void foresee(Manifold& m, const ShapeRecord& ra, const Transform& xfA, const ShapeRecord& rb,
+               const Transform& xfB, float dt) const;
   void solve(float h);
   void continuous();
   void updateSleep(float dt);
@@ -434,7 +440,8 @@ class World {
   // prepared), plus the null body at the end.
   std::vector<float> freeV_;
   std::vector<SolverBody> solverBodies_;
-  std::vector<double> startCenter_;  // x and y per slot
+  std::vector<SolverBody> freeMotion_;  // solverBodies_ before the warm start (restitution's)
+  std::vector<double> startCenter_;     // x and y per slot
   std::vector<double> startAngle_;
   // Body::round per slot, read each substep (a byte each: reading it from the bodies instead
   // cost the 5000-circle arena 2.5%).

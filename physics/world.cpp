@@ -870,28 +870,19 @@ void World::foresee(Manifold& m, const ShapeRecord& ra, const Transform& xfA, co
                     const Transform& xfB, float dt) const {
   const Body& bodyA = bodies_[static_cast<std::size_t>(ra.body)];
   const Body& bodyB = bodies_[static_cast<std::size_t>(rb.body)];
-  auto velocity = [&](const Body& b, Vec2& v, float& w) {
-    v = {};
-    w = 0.0f;
-    if (b.slot < 0) return;
-    const auto i = 3 * static_cast<std::size_t>(b.slot);
-    v = {v_[i], v_[i + 1]};
-    // A round body's shapes do not turn with it (as in continuous()).
-    w = b.round ? 0.0f : v_[i + 2];
+  // A round body's shapes do not turn with it (as in continuous()).
+  auto spin = [&](const Body& b) {
+    return b.slot < 0 || b.round ? 0.0f : v_[3 * static_cast<std::size_t>(b.slot) + 2];
   };
-  Vec2 vA, vB;
-  float wA, wB;
-  velocity(bodyA, vA, wA);
-  velocity(bodyB, vB, wB);
+  const Vec2 vA = velocityOf(bodyA), vB = velocityOf(bodyB);
+  const float wA = spin(bodyA), wB = spin(bodyB);
   const Vec2 cA = apply(xfA, bodyA.localCenter), cB = apply(xfB, bodyB.localCenter);
-  auto approach = [&](Vec2 point, Vec2 normal) {
-    return dot(vB + cross(wB, point - cB) - vA - cross(wA, point - cA), normal);
-  };
+  // (Every point is apart by more than kSpeculativeDistance: the caller checks.)
   bool closes = false;
   for (int k = 0; k < m.pointCount; ++k) {
     const ManifoldPoint& mp = m.points[k];
-    if (mp.separation <= kSpeculativeDistance) return;  // touching, or nearly: as it is
-    closes = closes || mp.separation + dt * approach(mp.point, m.normal) <= kSpeculativeDistance;
+    const Vec2 dv = vB + cross(wB, mp.point - cB) - vA - cross(wA, mp.point - cA);
+    closes = closes || mp.separation + dt * dot(dv, m.normal) <= kSpeculativeDistance;
   }
   if (!closes) return;  // the solver will not push these points: nothing to correct
 
@@ -936,15 +927,16 @@ void World::foresee(Manifold& m, const ShapeRecord& ra, const Transform& xfA, co
   // slop): twice that keeps its points.
   const Manifold at = collide(ra.shape, xfAt, rb.shape, xfBt, 2.0f * kSpeculativeDistance);
   if (at.pointCount == 0) return;
-  const Rot backA = Rot::fromAngle(-turnA), backB = Rot::fromAngle(-turnB);
+  auto turnBack = [](float turn, Vec2 r) {
+    return turn == 0.0f ? r : rotate(Rot::fromAngle(-turn), r);
+  };
   m.normal = at.normal;
   m.pointCount = at.pointCount;
   for (int k = 0; k < at.pointCount; ++k) {
     const ManifoldPoint& hit = at.points[k];
     ManifoldPoint& mp = m.points[k];
     // Lever arms at the start: the impact's, turned back with each body.
-    const Vec2 rA = turnA == 0.0f ? hit.point - cAt : rotate(backA, hit.point - cAt);
-    const Vec2 rB = turnB == 0.0f ? hit.point - cBt : rotate(backB, hit.point - cBt);
+    const Vec2 rA = turnBack(turnA, hit.point - cAt), rB = turnBack(turnB, hit.point - cBt);
     mp.point = hit.point;  // where they meet (events report it)
     mp.anchorA = cA + rA;
     mp.anchorB = cB + rB - xfB.p;
@@ -1223,6 +1215,13 @@ void World::solve(float dt) {
       ContactSoftness::make(h, def_.contactHertz, def_.contactDampingRatio, def_.maxPushoutSpeed);
   auto accel = [this](std::span<const double> q, std::span<const float> v, float t,
                       std::span<float> a) { accelerations(q, v, t, a); };
+  // The awake bodies' velocities into solver bodies (v and w; the rest as it is).
+  auto loadVelocities = [&](std::vector<SolverBody>& to) {
+    for (std::size_t s = 0; s < slots; ++s) {
+      to[s].v = {v_[3 * s], v_[3 * s + 1]};
+      to[s].w = v_[3 * s + 2];
+    }
+  };
   for (int sub = 0; sub < def_.substeps; ++sub) {
     const float t = static_cast<float>(time_) + static_cast<float>(sub) * h;
     // Free motion by the world's integrator, then damping (implicit, unconditionally stable).
@@ -1237,10 +1236,7 @@ void World::solve(float dt) {
     const bool moveWithNew = def_.integrator == Integrator::semiImplicitEuler;
     if (bouncy && !moveWithNew) {
       freeMotion_.assign(slots + 1, SolverBody{});
-      for (std::size_t s = 0; s < slots; ++s) {
-        freeMotion_[s].v = {v_[3 * s], v_[3 * s + 1]};
-        freeMotion_[s].w = v_[3 * s + 2];
-      }
+      loadVelocities(freeMotion_);
     }
     integrate<float, double>(def_.integrator, q, v, t, h, accel, scratch_);
     // (Only the damped bodies: reading every awake body's damping was a cache miss per body and
@@ -1257,10 +1253,7 @@ void World::solve(float dt) {
     }
     freeV_.assign(v.begin(), v.end());
     // Warm start with the impulses carried so far, then solve with the soft bias.
-    for (std::size_t s = 0; s < slots; ++s) {
-      solverBodies_[s].v = {v_[3 * s], v_[3 * s + 1]};
-      solverBodies_[s].w = v_[3 * s + 2];
-    }
+    loadVelocities(solverBodies_);
     // (Before any warm start: see warmStartBatch.)
     if (bouncy && moveWithNew) freeMotion_.assign(solverBodies_.begin(), solverBodies_.end());
     contactSolver_.warmStart(solverBodies_, bouncy ? std::span<const SolverBody>{freeMotion_}

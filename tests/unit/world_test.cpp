@@ -440,6 +440,26 @@ TEST(World, FreeBodiesFollowTheIntegratorExactly) {
   }
 }
 
+// Steps `w` at 60 Hz `steps` times, watching its total energy: the start, the highest seen (the
+// start included), and the first step whose state was not finite (-1: none; it stops there).
+struct EnergyRun {
+  double start = 0, highest = 0;
+  int nonFiniteStep = -1;
+};
+EnergyRun stepWatchingEnergy(rc::World& w, int steps) {
+  EnergyRun run;
+  run.start = run.highest = w.energy();
+  for (int i = 0; i < steps; ++i) {
+    w.step(1.0f / 60.0f);
+    if (!finiteState(w)) {
+      run.nonFiniteStep = i;
+      break;
+    }
+    run.highest = std::max(run.highest, w.energy());
+  }
+  return run;
+}
+
 // Random piles in a bin: circles, boxes, capsules and polygons with restitution up to 1 and any
 // friction, dropped from rest without overlap. Contacts may only take energy out: over 3000
 // steps the total (kinetic plus potential above the floor) never exceeds 1.001 times the start.
@@ -476,13 +496,8 @@ TEST(World, EnergyNeverRises) {
         }
       }
     }
-    const double start = w.energy();
-    double highest = start;
-    for (int i = 0; i < 3000; ++i) {
-      w.step(1.0f / 60.0f);
-      ASSERT_TRUE(finiteState(w)) << "seed " << seed << " step " << i;
-      highest = std::max(highest, w.energy());
-    }
+    const auto [start, highest, nonFinite] = stepWatchingEnergy(w, 3000);
+    ASSERT_EQ(nonFinite, -1) << "seed " << seed;
     std::printf("seed %llu: start %.3f J, highest %.3f J (%.6f), end %.3f J\n",
                 static_cast<unsigned long long>(seed), start, highest, highest / start, w.energy());
     EXPECT_LE(highest, 1.001 * start) << seed;
@@ -536,13 +551,8 @@ TEST(World, FastDiscsEnergyNeverRises) {
       w.createShape(w.createBody(bd), rc::makeCircle({}, r), sd);
       placed.push_back({p, r});
     }
-    const double start = w.energy();
-    double highest = start;
-    for (int i = 0; i < 600; ++i) {
-      w.step(1.0f / 60.0f);
-      ASSERT_TRUE(finiteState(w)) << "seed " << seed << " step " << i;
-      highest = std::max(highest, w.energy());
-    }
+    const auto [start, highest, nonFinite] = stepWatchingEnergy(w, 600);
+    ASSERT_EQ(nonFinite, -1) << "seed " << seed;
     std::printf("seed %llu: start %.1f J, highest %.1f J (%.6f), end %.1f J\n",
                 static_cast<unsigned long long>(seed), start, highest, highest / start, w.energy());
     EXPECT_LE(highest, 1.001 * start) << seed;

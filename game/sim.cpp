@@ -14,6 +14,7 @@
 
 #include "game/cli.h"
 #include "game/scene.h"
+#include "physics/contact_solver.h"
 
 #ifdef RICOCHET_HAS_RENDER
 #include "game/scene_view.h"

@@ -1,65 +1,30 @@
-// Ricochet physics: the world of rigid bodies.
+// Ricochet physics: the world of rigid bodies, as a game sees it.
 //
-// Bodies (static, kinematic, dynamic) carry shapes; the world steps them with a fixed time step:
+// Bodies (static, kinematic, dynamic) carry shapes; World::step(dt) advances them by a fixed
+// time step in named phases, each timed into profile() (physics/README.md describes them, in
+// order). Bodies and shapes are referred to by generational handles: a handle to a destroyed
+// body is detected, never silently reused. Events are read after the step; queries take a
+// filter. The state and the step's functions live behind a pointer (world_state.h, internal).
 //
-//   updatePairs   the quadtree reports the new pairs of proxies that moved (contacts created)
-//   narrowphase   every contact's manifold from the current transforms, matched to last step's
-//                 points by feature id (contacts whose fat AABBs parted are destroyed); points
-//                 are kept while the shapes are within what their bodies can close this step
-//                 (speculative contacts), so a fast body stops at the surface instead of
-//                 sinking into it and bouncing from inside; a fast pair's points are taken
-//                 where its motion makes them meet (the normal of the impact), or dropped if
-//                 it never does (no ghost collisions between bodies that pass close by)
-//   solve         prepare the contact constraints, then substeps of: free motion by the world's
-//                 integrator (forces evaluated at its stages), warm start, solve contacts (soft),
-//                 positions corrected by the velocity the contacts changed, relax; then
-//                 restitution, and the impulses stored for the next step's warm start
-//   continuous    fast bodies swept against static shapes and stopped at the first time of
-//                 impact (what speculative contacts cannot foresee: a body deflected mid-step)
-//   sensors       sensor overlaps from the new transforms, and visitors swept through them
-//   refit         body transforms, shape AABBs and quadtree proxies updated, each fat AABB
-//                 stretched along the body's next step (its velocity times dt), so the pairs a
-//                 fast body will meet exist before it moves
-//   sleep         islands of touching bodies that have been still long enough stop being
-//                 simulated (they cost nothing per step until woken)
-//
-// Each phase is timed into profile(). Bodies are referred to by generational handles: a handle
-// to a destroyed body is detected, never silently reused.
-//
-// The contact solver is the "soft step" of Catto's Solver2D study (Box2D v3): each contact is a
-// soft constraint (a spring-damper with a stiffness tied to the substep rate), solved with
-// substeps and a relax pass without bias, restitution applied once at the end. Chosen over
-// Box2D 2.4's sequential impulses with a separate position pass because in that study it kept
-// tall stacks and large mass ratios upright with a fraction of the iterations, it adds no energy
-// when pushing overlapping bodies apart (the push-out speed is capped and removed by relax), and
-// substeps keep the integrator's accuracy between contacts. Two additions of ours: a contact
-// within the linear slop is rigid (no softness), so a stack carries its load without sinking
-// (a soft spring must compress to push back: 19 cm at the top of a 40-box pyramid), and is
-// pushed out towards half the slop, so what it took in while settling comes back out; and the
-// two points of a manifold are solved together (a 2x2 complementarity problem), so that a
-// symmetric stack stays symmetric.
-//
-// Integrators (physics/integrate.h): the world's integrator moves every body over each substep
-// as if nothing touched it; the contact solver's velocity change dv then moves the body by
-// h dv more. A body no contact pushes therefore follows its integrator exactly (RK4 stays fourth
-// order on an orbit or a spring), and with semi-implicit Euler this is Box2D's update.
+// The contact solver is the "soft step" of Catto's Solver2D study (Box2D v3), with contacts
+// within the slop solved rigidly and both points of a manifold solved together; the world's
+// integrator (physics/integrate.h) moves each body as if nothing touched it and the contacts'
+// velocity change moves it further, so a body nothing pushes follows its integrator exactly.
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
+#include <span>
 #include <stdexcept>
-#include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "physics/broadphase.h"
-#include "physics/contact_solver.h"
 #include "physics/integrate.h"
-#include "physics/manifold.h"
 #include "physics/shapes.h"
-#include "physics/toi.h"
+#include "physics/step_accumulator.h"
 
 namespace rc {
 
@@ -186,7 +151,7 @@ struct Profile {
   int colours = 0, overflow = 0;
 };
 
-class World;
+class WorldState;
 
 // What a force field sees at one stage of the integrator: the stage's state of every body and
 // a place to add forces. Forces added here act for that stage only.
@@ -202,12 +167,12 @@ class ForceStage {
   void addForceAt(BodyId id, Vec2 force, Vec2 worldPoint);
 
  private:
-  friend class World;
-  ForceStage(World& world, std::span<const double> q, std::span<const float> v, std::span<float> a,
-             float time)
+  friend class WorldState;
+  ForceStage(WorldState& world, std::span<const double> q, std::span<const float> v,
+             std::span<float> a, float time)
       : world_(world), q_(q), v_(v), a_(a), time_(time) {}
   int slot(BodyId id) const;
-  World& world_;
+  WorldState& world_;
   std::span<const double> q_;
   std::span<const float> v_;
   std::span<float> a_;
@@ -219,6 +184,9 @@ using ForceField = std::function<void(ForceStage&)>;
 class World {
  public:
   explicit World(const WorldDef& def = {});
+  ~World();
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
 
   BodyId createBody(const BodyDef& def);
   void destroyBody(BodyId id);
@@ -247,7 +215,7 @@ class World {
   bool isAwake(BodyId id) const;
   // Wakes the body and every body asleep in its island.
   void wake(BodyId id);
-  int awakeBodyCount() const { return awakeCount_; }
+  int awakeBodyCount() const;
 
   // Forces and torques act for the next step, then are cleared. Impulses change the velocity
   // at once.
@@ -277,14 +245,14 @@ class World {
   std::vector<ShapeId> overlapPoint(Vec2 point, ProxyFilter filter = {}) const;
   BodyId bodyOf(ShapeId shape) const;
 
-  const ContactEvents& contactEvents() const { return events_; }
-  const SensorEvents& sensorEvents() const { return sensorEvents_; }
+  const ContactEvents& contactEvents() const;
+  const SensorEvents& sensorEvents() const;
 
   // A user force evaluated at every integrator stage (springs, drag, attractors).
-  void addForceField(ForceField field) { fields_.push_back(std::move(field)); }
+  void addForceField(ForceField field);
 
-  int bodyCount() const { return bodyCount_; }
-  int contactCount() const { return static_cast<int>(contacts_.size()); }
+  int bodyCount() const;
+  int contactCount() const;
   int touchingContactCount() const;
 
   // Read-only views for tools that draw or inspect a world (the renderer's overlay).
@@ -298,10 +266,10 @@ class World {
     float normalImpulse;  // of the last step
   };
   std::vector<ContactPointView> contactPoints() const;  // of touching contacts
-  const Quadtree& broadphase() const { return broadphase_; }
-  const WorldDef& def() const { return def_; }
-  const Profile& profile() const { return profile_; }
-  double time() const { return time_; }
+  const Quadtree& broadphase() const;
+  const WorldDef& def() const;
+  const Profile& profile() const;
+  double time() const;
 
   // FNV-1a over the bits of every body's position, angle and velocities, in creation order:
   // equal hashes mean bit-identical states.
@@ -311,194 +279,7 @@ class World {
   double energy() const;
 
  private:
-  friend class ForceStage;
-  struct Body {
-    BodyType type = BodyType::staticBody;
-    bool alive = false;
-    bool fixedRotation = false;
-    bool bullet = false;
-    std::uint32_t generation = 0;
-    Transform xf;  // body origin and rotation (refreshed after every step)
-    float angle = 0;
-    Vec2 localCenter{};
-    Vec2 force{};
-    float torque = 0;
-    float mass = 0, invMass = 0, inertia = 0, invInertia = 0;
-    float linearDamping = 0, angularDamping = 0, gravityScale = 1;
-    float minExtent = 0, maxExtent = 0;  // for continuous collision (see continuous())
-    bool allowSleep = true;
-    float sleepTime = 0;       // how long it has been slower than the sleep tolerances
-    std::int32_t island = -1;  // its sleeping island, -1 while awake
-    std::uint64_t userData = 0;
-    std::int32_t slot = -1;  // in q_ and v_; -1 for static bodies
-    // Every shape a circle about the centre of mass: turning moves none of its contact
-    // geometry, so the solver does not rotate its contact anchors (see solve()).
-    bool round = false;
-    std::vector<std::int32_t> shapes;
-  };
-  struct ShapeRecord {
-    Shape shape = Circle{};
-    std::int32_t body = -1;
-    std::uint32_t generation = 0;
-    bool alive = false;
-    bool isSensor = false;
-    float density = 0, friction = 0, restitution = 0;
-    ProxyId proxy = kNullProxy;
-    std::uint64_t userData = 0;
-    BoundingCircle bound{};  // in the body frame: how far the shape reaches as the body turns
-  };
-  struct Contact {
-    std::int32_t shapeA = -1, shapeB = -1;  // shapeA < shapeB
-    Manifold manifold;
-    float normalImpulse[2] = {0, 0}, tangentImpulse[2] = {0, 0};
-    float friction = 0, restitution = 0;
-    bool touching = false;
-  };
-
-  std::size_t checked(BodyId id) const;
-  const ShapeRecord& shapeRecord(ShapeId id) const;
-  ShapeId shapeId(std::int32_t index) const {
-    return {index, shapes_[static_cast<std::size_t>(index)].generation};
-  }
-  CastOutput rayAgainst(ProxyId proxy, const RayCastInput& ray) const;
-  template <class Exact>
-  std::optional<WorldHit> closest(const RayCastInput& in, float radius, ProxyFilter filter,
-                                  Exact&& exact) const;
-  Body& body(BodyId id) { return bodies_[checked(id)]; }
-  const Body& body(BodyId id) const { return bodies_[checked(id)]; }
-  Vec2 center(const Body& b) const;
-  Vec2 velocityOf(const Body& b) const;
-  template <class Solve>
-  void forEachConstraint(Solve&& solve);
-  void applyRestitution();
-  void updateMass(Body& b);
-  void refitBody(Body& b, Vec2 displacement);
-  void updatePairs();
-  void narrowphase(float dt);
-  void foresee(Manifold& m, const ShapeRecord& ra, const Transform& xfA, const ShapeRecord& rb,
-               const Transform& xfB, float dt) const;
-  void solve(float h);
-  void continuous();
-  void updateSleep(float dt);
-  void updateSensors();
-  void destroySensorPair(std::size_t index);
-  bool awake(const Body& b) const { return b.slot >= 0 && b.slot < awakeCount_; }
-  void wakeBody(Body& b);
-  void swapSlots(std::int32_t a, std::int32_t b);
-  void destroyContact(std::size_t index);
-  void accelerations(std::span<const double> q, std::span<const float> v, float t,
-                     std::span<float> a);
-  // The body's origin in double (its centre minus the turned local centre): what the
-  // narrowphase takes differences of.
-  std::array<double, 2> preciseOrigin(const Body& b) const;
-  double preciseOrigin(const Body& b, int axis) const;  // one component: 0 x, 1 y
-  // An awake body's motion over the step so far, from where it started (float: for sweeps).
-  Sweep stepSweep(const Body& b) const;
-  bool isRound(const Body& b) const;  // see Body::round
-  void reserveTurns(std::size_t n);
-  // Takes the queued angles' sines and cosines (turnAngles_) and hands each owner its rotation.
-  template <class Apply>
-  void applyTurns(Apply&& apply);
-
-  WorldDef def_;
-  Quadtree broadphase_;
-  std::vector<Body> bodies_;
-  std::vector<std::int32_t> freeBodies_;
-  std::vector<ShapeRecord> shapes_;
-  std::vector<Contact> contacts_;
-  std::vector<ForceField> fields_;
-  // Per simulated (kinematic and dynamic) body, three degrees of freedom: x, y and angle of the
-  // centre of mass, and their velocities. Bodies hold their slot. Positions are doubles: 10 km
-  // out a float position moves in steps of 1 mm and a settling pile cannot take the small steps
-  // it needs (everything else, velocities, impulses, shapes and the narrowphase, which works
-  // relative to body A, is float).
-  std::vector<double> q_;
-  std::vector<float> v_;
-  std::vector<std::int32_t> slotBody_;
-  // Slots [0, awakeCount_) are awake; sleeping bodies' slots follow, untouched by the step.
-  int awakeCount_ = 0;
-  std::vector<std::vector<std::int32_t>> islands_;  // sleeping islands: their bodies
-  std::vector<std::int32_t> freeIslands_;
-  std::vector<std::int32_t> islandParent_;  // union-find over awake slots, per step
-  IntegratorScratch<float, double> scratch_;
-  std::vector<ProxyPair> newPairs_;
-  // Bodies created, moved or given a velocity since the last step: their proxies are stretched
-  // along their first step's motion before pairs are found.
-  std::vector<std::int32_t> pendingRefit_;
-  // The step's constraints, in the solver's order: the contact and bodies of each, and what
-  // the solver's colouring needs; the constraints with restitution, whole, and their indices.
-  struct ConstraintSource {
-    std::int32_t contact, bodyA, bodyB;
-  };
-  std::vector<ConstraintSource> constraintSources_;
-  std::vector<ConstraintBodies> constraintBodies_;
-  std::vector<ContactConstraint> bouncy_;
-  std::vector<std::int32_t> bouncyIndex_;
-  ContactSolver contactSolver_;
-  // Per slot during the solve: the free-motion velocities of the substep, and the solver's
-  // bodies (velocity, and how far each has moved and turned since the constraints were
-  // prepared), plus the null body at the end.
-  std::vector<float> freeV_;
-  std::vector<SolverBody> solverBodies_;
-  std::vector<SolverBody> freeMotion_;  // solverBodies_ before the warm start (restitution's)
-  std::vector<double> startCenter_;     // x and y per slot
-  std::vector<double> startAngle_;
-  // Body::round per slot, read each substep (a byte each: reading it from the bodies instead
-  // cost the 5000-circle arena 2.5%).
-  std::vector<std::uint8_t> slotRound_;
-  std::vector<float> baseAccel_;      // per awake slot: gravity, force and torque accelerations
-  std::vector<std::int32_t> damped_;  // awake slots with linear or angular damping
-  // Angles whose sine and cosine are wanted, taken in one batch (see rc::sincos), and the
-  // bodies or slots they belong to.
-  std::vector<float> turnAngles_;
-  std::vector<SinCos> turnRotations_;
-  std::vector<std::int32_t> turnOwners_;
-  // Continuous collision: per shape, its index among the shapes whose candidates come from
-  // their contacts (-1 otherwise; reset after each step), those shapes, and their candidate
-  // lists (candidates_[candidateStart_[k] .. candidateStart_[k + 1]) for shape k).
-  std::vector<std::int32_t> contactSwept_;
-  std::vector<std::int32_t> sweptShapes_;
-  std::vector<std::int32_t> fastSlots_;  // the slots of bodies that moved far enough to sweep
-  std::vector<std::int32_t> candidateStart_, candidates_, fillCursor_;
-  ContactEvents events_;
-  SensorEvents sensorEvents_;
-  // Sensor shapes and the shapes whose fat AABBs overlap them.
-  struct SensorPair {
-    std::int32_t sensor, visitor;
-    bool overlapping = false;
-  };
-  std::vector<SensorPair> sensorPairs_;
-  std::unordered_map<std::uint64_t, std::int32_t> sensorIndex_;
-  // Contacts by their shape pair, for finding whether a new proxy pair already has one.
-  std::unordered_map<std::uint64_t, std::int32_t> contactIndex_;
-  Profile profile_;
-  double time_ = 0;
-  int bodyCount_ = 0;
-};
-
-// Runs a world at a fixed step from wall-clock time ("fix your timestep"): the elapsed time of
-// each frame is banked and spent in whole steps of exactly dt, so the simulation (and its
-// hashes) depend only on how many steps were taken, never on the frame rate. At most maxSteps
-// are taken per call, so a frame that took too long cannot make the next one take longer still;
-// the time over that is dropped (and counted). alpha() is the banked part of a step, for
-// drawing bodies between their last two states.
-class StepAccumulator {
- public:
-  // dt finite and positive, maxSteps at least 1; otherwise InvalidDefinition.
-  explicit StepAccumulator(float dt = 1.0f / 60.0f, int maxSteps = 8);
-  // Banks elapsed seconds (finite, not negative) and steps the world for every whole step in
-  // the bank, up to maxSteps. Returns the number of steps taken.
-  int advance(World& world, double elapsedSeconds);
-  float dt() const { return dt_; }
-  double alpha() const { return banked_ / dt_; }      // in [0, 1) after advance()
-  double droppedSeconds() const { return dropped_; }  // discarded by the step cap, in total
-  long long steps() const { return steps_; }          // taken, in total
-
- private:
-  float dt_;
-  int maxSteps_;
-  double banked_ = 0.0, dropped_ = 0.0;
-  long long steps_ = 0;
+  std::unique_ptr<WorldState> s_;
 };
 
 }  // namespace rc

@@ -68,7 +68,7 @@ TEST(Scene, BadInputNamesFileBodyAndField) {
       {R"({"bodies": [{"shapes": [{"type": "box", "halfExtents": [1, 1], "mask": -1}]}]})",
        "s.json: body 0, shapes[0].mask: must be an integer from 0 to 4294967295, got -1"},
       {R"({"bodies": [{"type": "dynamic", "linearDamping": -1}]})",
-       "s.json: body 0: linearDamping is -1.000000 (must be >= 0)"},
+       "s.json: body 0: linearDamping is -1 (must be >= 0)"},
       {R"({"bodies": [{"type": "dynamic", "shapes": [{"type": "segment", "point1": [0, 0],
            "point2": [1, 0]}]}]})",
        "s.json: body 0: shape: type is a segment, which has no area: only static and kinematic "

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "physics/contact_solver.h"
 #include "physics/random.h"
 #include "physics/world.h"
 

@@ -1,0 +1,278 @@
+// Contacts: pairs from the broadphase, the narrowphase (manifolds, warm-start matching,
+// speculative points and their foresight), contact events.
+#include <algorithm>
+#include <cmath>
+
+#include "physics/collide.h"
+#include "physics/world.h"
+#include "physics/world_state.h"
+
+namespace rc {
+
+namespace {
+
+// Friction and restitution of a pair, as Box2D mixes them: geometric mean, maximum.
+float mixFriction(float a, float b) {
+  return std::sqrt(a * b);
+}
+float mixRestitution(float a, float b) {
+  return std::max(a, b);
+}
+
+}  // namespace
+
+void WorldState::updatePairs() {
+  broadphase_.updatePairs(newPairs_);
+  for (const ProxyPair& pair : newPairs_) {
+    auto sa = static_cast<std::int32_t>(broadphase_.userData(pair.a));
+    auto sb = static_cast<std::int32_t>(broadphase_.userData(pair.b));
+    if (sa > sb) std::swap(sa, sb);
+    const ShapeRecord& ra = shapes_[static_cast<std::size_t>(sa)];
+    const ShapeRecord& rb = shapes_[static_cast<std::size_t>(sb)];
+    if (ra.body == rb.body) continue;
+    const Body& ba = bodies_[static_cast<std::size_t>(ra.body)];
+    const Body& bb = bodies_[static_cast<std::size_t>(rb.body)];
+    if (ra.isSensor || rb.isSensor) {
+      // A sensor and a visitor, at least one of them able to move.
+      if (ra.isSensor == rb.isSensor) continue;
+      if (ba.type == BodyType::staticBody && bb.type == BodyType::staticBody) continue;
+      const std::int32_t sensor = ra.isSensor ? sa : sb, visitor = ra.isSensor ? sb : sa;
+      const std::uint64_t key = pairKey(sensor, visitor);
+      if (sensorIndex_.count(key)) continue;
+      sensorIndex_[key] = static_cast<std::int32_t>(sensorPairs_.size());
+      sensorPairs_.push_back({sensor, visitor, false});
+      continue;
+    }
+    if (ba.type != BodyType::dynamicBody && bb.type != BodyType::dynamicBody) continue;
+    if (!hasManifold(ra.shape.type, rb.shape.type)) continue;
+    const std::uint64_t key = pairKey(sa, sb);
+    if (contactIndex_.count(key)) continue;
+    Contact c;
+    c.shapeA = sa;
+    c.shapeB = sb;
+    c.friction = mixFriction(ra.friction, rb.friction);
+    c.restitution = mixRestitution(ra.restitution, rb.restitution);
+    contactIndex_[key] = static_cast<std::int32_t>(contacts_.size());
+    contacts_.push_back(c);
+  }
+}
+
+void WorldState::destroyContact(std::size_t index) {
+  if (contacts_[index].touching)
+    events_.end.push_back({shapeId(contacts_[index].shapeA), shapeId(contacts_[index].shapeB)});
+  contactIndex_.erase(pairKey(contacts_[index].shapeA, contacts_[index].shapeB));
+  if (index + 1 != contacts_.size()) {
+    contacts_[index] = contacts_.back();
+    contactIndex_[pairKey(contacts_[index].shapeA, contacts_[index].shapeB)] =
+        static_cast<std::int32_t>(index);
+  }
+  contacts_.pop_back();
+}
+
+// The solver keeps a speculative point's gap from closing along the normal the manifold had at
+// the start of the step: a linearisation, exact for bodies that approach head on, wrong for
+// bodies that pass each other or meet at a glance. Two bullets crossing paths diagonally, 3 m
+// apart with 220 m/s of approach along that normal, were pushed apart (and bounced, restitution
+// 0.8) though their discs never came closer than 1.1 m; two passing side by side 5 cm apart
+// bounced off each other; two grazing ones bounced back head on. So the manifold of a fast pair
+// (margin beyond kSpeculativeDistance) whose every point is still farther than that, and whose
+// linearised gap closes within the step, is taken where the pair actually meets: both bodies
+// moved at their present velocities (gravity adds 1.4 mm in a 60 Hz step, well inside the
+// 2 cm target), the time of impact found, and the manifold made there. Its points are carried
+// back to the start of the step (anchors turned back with each body, the separation widened by
+// what the approach closes until the impact), so the solver's linearised gap closes at the
+// time of impact along the normal of the impact, and restitution reverses the approach along
+// that normal. A pair that never comes within kSpeculativeDistance gets no points: a ghost.
+// Frames as in narrowphase(): A's origin at zero.
+void WorldState::foresee(Manifold& m, const ShapeRecord& ra, const Transform& xfA,
+                         const ShapeRecord& rb, const Transform& xfB, float dt) const {
+  const Body& bodyA = bodies_[static_cast<std::size_t>(ra.body)];
+  const Body& bodyB = bodies_[static_cast<std::size_t>(rb.body)];
+  // A round body's shapes do not turn with it (as in continuous()).
+  auto spin = [&](const Body& b) {
+    return b.slot < 0 || b.round ? 0.0f : v_[3 * static_cast<std::size_t>(b.slot) + 2];
+  };
+  const Vec2 vA = velocityOf(bodyA), vB = velocityOf(bodyB);
+  const float wA = spin(bodyA), wB = spin(bodyB);
+  const Vec2 cA = apply(xfA, bodyA.localCenter), cB = apply(xfB, bodyB.localCenter);
+  // (Every point is apart by more than kSpeculativeDistance: the caller checks.)
+  bool closes = false;
+  for (int k = 0; k < m.pointCount; ++k) {
+    const ManifoldPoint& mp = m.points[k];
+    const Vec2 dv = vB + cross(wB, mp.point - cB) - vA - cross(wA, mp.point - cA);
+    closes = closes || mp.separation + dt * dot(dv, m.normal) <= kSpeculativeDistance;
+  }
+  if (!closes) return;  // the solver will not push these points: nothing to correct
+
+  float t = 0.0f;
+  if (bodyA.round && bodyB.round && ra.shape.type == ShapeType::circle &&
+      rb.shape.type == ShapeType::circle) {
+    // Exact for two discs: where they touch.
+    const CastOutput cast =
+        sweptCircles(cA, ra.shape.circle.radius, dt * vA, cB, rb.shape.circle.radius, dt * vB);
+    if (!cast.hit) {
+      m.pointCount = 0;
+      return;
+    }
+    t = cast.fraction;
+  } else {
+    // Round bodies swept without turning (their angle is then 0 in the sweep: no sine and
+    // cosine per iteration; their geometry does not depend on it).
+    auto sweepOf = [&](const Body& b, Vec2 c, Vec2 v, float w) {
+      const float a = b.round ? 0.0f : b.angle;
+      return Sweep{b.localCenter, c, c + dt * v, a, a + dt * w};
+    };
+    const ToiOutput toi =
+        timeOfImpact(makeProxy(ra.shape), sweepOf(bodyA, cA, vA, wA), makeProxy(rb.shape),
+                     sweepOf(bodyB, cB, vB, wB), 1.0f, kLinearSlop);
+    if (toi.state == ToiState::separated) {
+      m.pointCount = 0;
+      return;
+    }
+    if (toi.state != ToiState::hit) return;  // no better answer: the start's manifold
+    t = toi.fraction;
+  }
+  if (t <= 0.0f) return;
+
+  // Each body at the time of impact, turned by w t dt (round bodies keep their rotation).
+  const float turnA = t * dt * wA, turnB = t * dt * wB;
+  const Rot qA = turnA == 0.0f ? xfA.q : Rot::fromAngle(bodyA.angle + turnA);
+  const Rot qB = turnB == 0.0f ? xfB.q : Rot::fromAngle(bodyB.angle + turnB);
+  const Vec2 cAt = cA + (t * dt) * vA, cBt = cB + (t * dt) * vB;
+  const Transform xfAt{cAt - rotate(qA, bodyA.localCenter), qA};
+  const Transform xfBt{cBt - rotate(qB, bodyB.localCenter), qB};
+  // Apart by about kSpeculativeDistance there (the time of impact's tolerance is a quarter
+  // slop): twice that keeps its points.
+  const Manifold at = collide(ra.shape, xfAt, rb.shape, xfBt, 2.0f * kSpeculativeDistance);
+  if (at.pointCount == 0) return;
+  auto turnBack = [](float turn, Vec2 r) {
+    return turn == 0.0f ? r : rotate(Rot::fromAngle(-turn), r);
+  };
+  m.normal = at.normal;
+  m.pointCount = at.pointCount;
+  for (int k = 0; k < at.pointCount; ++k) {
+    const ManifoldPoint& hit = at.points[k];
+    ManifoldPoint& mp = m.points[k];
+    // Lever arms at the start: the impact's, turned back with each body.
+    const Vec2 rA = turnBack(turnA, hit.point - cAt), rB = turnBack(turnB, hit.point - cBt);
+    mp.point = hit.point;  // where they meet (events report it)
+    mp.anchorA = cA + rA;
+    mp.anchorB = cB + rB - xfB.p;
+    mp.id = hit.id;
+    // Widened by the approach until the impact: the solver's gap closes to the impact's there.
+    const float vn = dot(vB + cross(wB, rB) - vA - cross(wA, rA), at.normal);
+    mp.separation = hit.separation - t * dt * vn;
+  }
+}
+
+void WorldState::narrowphase(float dt) {
+  // Nothing awake: every contact is as it was when its bodies fell asleep (the loop below
+  // would skip each one).
+  if (awakeCount_ == 0) return;
+  // How far a shape's surface can move towards anything this step: its body's speed plus its
+  // turning speed times its reach from the centre of mass.
+  auto reachSpeed = [&](const ShapeRecord& r) {
+    const Body& b = bodies_[static_cast<std::size_t>(r.body)];
+    if (b.slot < 0) return 0.0f;
+    const auto i = 3 * static_cast<std::size_t>(b.slot);
+    const float reach = length(r.bound.center - b.localCenter) + r.bound.radius;
+    return length(Vec2{v_[i], v_[i + 1]}) + std::fabs(v_[i + 2]) * reach;
+  };
+  // Back to front: a destroyed contact is replaced by the last one, already updated.
+  for (std::size_t i = contacts_.size(); i-- > 0;) {
+    Contact& c = contacts_[i];
+    const ShapeRecord& ra = shapes_[static_cast<std::size_t>(c.shapeA)];
+    const ShapeRecord& rb = shapes_[static_cast<std::size_t>(c.shapeB)];
+    Body& bodyA = bodies_[static_cast<std::size_t>(ra.body)];
+    Body& bodyB = bodies_[static_cast<std::size_t>(rb.body)];
+    // Nothing awake on either side: the contact is as it was when they fell asleep.
+    if (!awake(bodyA) && !awake(bodyB)) continue;
+    if (!overlaps(broadphase_.fatAABB(ra.proxy), broadphase_.fatAABB(rb.proxy))) {
+      destroyContact(i);
+      continue;
+    }
+    // In A's frame translated to A's origin, B placed by the difference of the two origins
+    // taken in double: far from the world origin the float origins are too coarse (1 mm apart
+    // 10 km out) for the separations a resting contact needs.
+    // (By component: as two arrays the origins went through memory, and their difference was
+    // one vector load of two scalars just stored, a store-forwarding stall, a fifth of this loop.)
+    const Transform xfA{{}, bodyA.xf.q};
+    const Transform xfB{{static_cast<float>(preciseOrigin(bodyB, 0) - preciseOrigin(bodyA, 0)),
+                         static_cast<float>(preciseOrigin(bodyB, 1) - preciseOrigin(bodyA, 1))},
+                        bodyB.xf.q};
+    const Manifold old = c.manifold;
+    const float oldNormal[2] = {c.normalImpulse[0], c.normalImpulse[1]};
+    const float oldTangent[2] = {c.tangentImpulse[0], c.tangentImpulse[1]};
+    const float margin = def_.continuous
+                             ? kSpeculativeDistance + dt * (reachSpeed(ra) + reachSpeed(rb))
+                             : kSpeculativeDistance;
+    // Constructed in place: the manifold function's result goes straight into the contact.
+    // Assigned, it was built in a temporary and copied with wide loads of the narrow stores just
+    // made (a store-forwarding stall, a sixth of this loop).
+    // (Placement new, not std::construct_at, whose forwarding reference makes a temporary.)
+    ::new (static_cast<void*>(&c.manifold)) Manifold(collide(ra.shape, xfA, rb.shape, xfB, margin));
+    // Only apart beyond the usual margin (every point) is there anything to foresee; resting
+    // and sliding contacts, nearly all of a pile's, stop here (the call was 2% of a pyramid).
+    const Manifold& m = c.manifold;
+    if (margin > kSpeculativeDistance && m.pointCount > 0 &&
+        m.points[0].separation > kSpeculativeDistance &&
+        (m.pointCount == 1 || m.points[1].separation > kSpeculativeDistance))
+      foresee(c.manifold, ra, xfA, rb, xfB, dt);
+    for (int k = 0; k < c.manifold.pointCount; ++k)
+      c.manifold.points[k].point += bodyA.xf.p;
+    // Warm start: a point keeps last step's impulses when the same features touch.
+    for (int k = 0; k < c.manifold.pointCount; ++k) {
+      c.normalImpulse[k] = c.tangentImpulse[k] = 0.0f;
+      for (int j = 0; j < old.pointCount; ++j)
+        if (old.points[j].id == c.manifold.points[k].id) {
+          c.normalImpulse[k] = oldNormal[j];
+          c.tangentImpulse[k] = oldTangent[j];
+        }
+    }
+    const bool was = c.touching;
+    c.touching = c.manifold.pointCount > 0;
+    // Touching something awake wakes a sleeping body's island.
+    if (c.touching) {
+      if (bodyA.island >= 0) wakeBody(bodyA);
+      if (bodyB.island >= 0) wakeBody(bodyB);
+    }
+    if (c.touching && !was) {
+      // How fast the surfaces close at the first point, from the velocities before the solve.
+      const ManifoldPoint& mp = c.manifold.points[0];
+      const Body& a = bodies_[static_cast<std::size_t>(ra.body)];
+      const Body& b = bodies_[static_cast<std::size_t>(rb.body)];
+      auto pointVelocity = [&](const Body& body) {
+        if (body.slot < 0) return Vec2{};
+        const auto k = 3 * static_cast<std::size_t>(body.slot);
+        return Vec2{v_[k], v_[k + 1]} + cross(v_[k + 2], mp.point - center(body));
+      };
+      const float approach = -dot(pointVelocity(b) - pointVelocity(a), c.manifold.normal);
+      const ShapeId idA = shapeId(c.shapeA), idB = shapeId(c.shapeB);
+      events_.begin.push_back({idA, idB, mp.point, c.manifold.normal, approach});
+      if (approach > def_.hitEventThreshold)
+        events_.hit.push_back({idA, idB, mp.point, c.manifold.normal, approach});
+    } else if (!c.touching && was) {
+      events_.end.push_back({shapeId(c.shapeA), shapeId(c.shapeB)});
+    }
+  }
+}
+
+std::vector<World::ContactPointView> World::contactPoints() const {
+  std::vector<ContactPointView> out;
+  for (const WorldState::Contact& c : s_->contacts_) {
+    if (!c.touching) continue;
+    for (int k = 0; k < c.manifold.pointCount; ++k)
+      out.push_back({c.manifold.points[k].point, c.manifold.normal, c.manifold.points[k].separation,
+                     c.normalImpulse[k]});
+  }
+  return out;
+}
+
+int World::touchingContactCount() const {
+  int n = 0;
+  for (const WorldState::Contact& c : s_->contacts_)
+    n += c.touching;
+  return n;
+}
+
+}  // namespace rc

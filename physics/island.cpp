@@ -1,0 +1,119 @@
+// Islands and sleep: still islands of touching bodies stop being simulated until woken.
+#include <algorithm>
+#include <limits>
+#include <vector>
+
+#include "physics/world.h"
+#include "physics/world_state.h"
+
+namespace rc {
+
+void WorldState::wakeBody(Body& b) {
+  b.sleepTime = 0.0f;
+  if (b.island < 0) return;
+  const std::int32_t island = b.island;
+  for (std::int32_t index : islands_[static_cast<std::size_t>(island)]) {
+    Body& m = bodies_[static_cast<std::size_t>(index)];
+    m.island = -1;
+    m.sleepTime = 0.0f;
+    swapSlots(m.slot, awakeCount_);
+    ++awakeCount_;
+  }
+  islands_[static_cast<std::size_t>(island)].clear();
+  freeIslands_.push_back(island);
+}
+
+bool World::isAwake(BodyId id) const {
+  return s_->awake(s_->body(id));
+}
+
+void World::wake(BodyId id) {
+  s_->wakeBody(s_->body(id));
+}
+
+void WorldState::updateSleep(float dt) {
+  const auto n = static_cast<std::size_t>(awakeCount_);
+  const float lin2 = def_.linearSleepTolerance * def_.linearSleepTolerance;
+  const float ang2 = def_.angularSleepTolerance * def_.angularSleepTolerance;
+  // Each awake body's still time; bodies that may not sleep count as never still.
+  for (std::size_t s = 0; s < n; ++s) {
+    Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
+    const float v2 = v_[3 * s] * v_[3 * s] + v_[3 * s + 1] * v_[3 * s + 1];
+    const float w2 = v_[3 * s + 2] * v_[3 * s + 2];
+    const bool still = def_.enableSleep && b.allowSleep && v2 <= lin2 && w2 <= ang2;
+    b.sleepTime = still ? b.sleepTime + dt : 0.0f;
+  }
+  if (!def_.enableSleep || n == 0) return;
+  // Islands: awake dynamic bodies joined by touching contacts (union-find over slots).
+  islandParent_.resize(n);
+  for (std::size_t s = 0; s < n; ++s)
+    islandParent_[s] = static_cast<std::int32_t>(s);
+  auto root = [&](std::int32_t x) {
+    while (islandParent_[static_cast<std::size_t>(x)] != x) {
+      islandParent_[static_cast<std::size_t>(x)] =
+          islandParent_[static_cast<std::size_t>(islandParent_[static_cast<std::size_t>(x)])];
+      x = islandParent_[static_cast<std::size_t>(x)];
+    }
+    return x;
+  };
+  // An island touching something that moves and cannot join it (a moving kinematic body)
+  // stays awake: its root gets a still time of 0 below.
+  std::vector<float>& still = freeV_;  // reused scratch: the island's shortest still time
+  still.assign(n, std::numeric_limits<float>::max());
+  for (const Contact& c : contacts_) {
+    if (!c.touching) continue;
+    const Body& a =
+        bodies_[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(c.shapeA)].body)];
+    const Body& b =
+        bodies_[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(c.shapeB)].body)];
+    const bool da = a.type == BodyType::dynamicBody && awake(a);
+    const bool db = b.type == BodyType::dynamicBody && awake(b);
+    if (da && db) {
+      islandParent_[static_cast<std::size_t>(root(a.slot))] = root(b.slot);
+    } else if (da != db) {
+      const Body& other = da ? b : a;
+      if (other.type == BodyType::kinematicBody && awake(other)) {
+        const auto k = 3 * static_cast<std::size_t>(other.slot);
+        if (v_[k] != 0.0f || v_[k + 1] != 0.0f || v_[k + 2] != 0.0f)
+          still[static_cast<std::size_t>((da ? a : b).slot)] = 0.0f;
+      }
+    }
+  }
+  for (std::size_t s = 0; s < n; ++s) {
+    const float t = bodies_[static_cast<std::size_t>(slotBody_[s])].sleepTime;
+    const auto r = static_cast<std::size_t>(root(static_cast<std::int32_t>(s)));
+    still[r] = std::min({still[r], still[s], t});
+  }
+  // Islands still long enough go to sleep together, in slot order.
+  std::vector<std::int32_t> sleepers;
+  for (std::size_t s = 0; s < n; ++s)
+    if (still[static_cast<std::size_t>(root(static_cast<std::int32_t>(s)))] >= def_.timeToSleep)
+      sleepers.push_back(slotBody_[s]);
+  if (sleepers.empty()) return;
+  std::vector<std::int32_t> islandOfRoot(n, -1);
+  for (std::int32_t index : sleepers) {
+    Body& b = bodies_[static_cast<std::size_t>(index)];
+    const auto r = static_cast<std::size_t>(root(b.slot));
+    if (islandOfRoot[r] < 0) {
+      if (freeIslands_.empty()) {
+        islandOfRoot[r] = static_cast<std::int32_t>(islands_.size());
+        islands_.emplace_back();
+      } else {
+        islandOfRoot[r] = freeIslands_.back();
+        freeIslands_.pop_back();
+      }
+    }
+    b.island = islandOfRoot[r];
+    islands_[static_cast<std::size_t>(b.island)].push_back(index);
+  }
+  // Out of the awake slots (after the union-find is done with slot numbers), velocities zeroed.
+  for (std::int32_t index : sleepers) {
+    Body& b = bodies_[static_cast<std::size_t>(index)];
+    swapSlots(b.slot, awakeCount_ - 1);
+    --awakeCount_;
+    const auto i = 3 * static_cast<std::size_t>(b.slot);
+    v_[i] = v_[i + 1] = v_[i + 2] = 0.0f;
+  }
+}
+
+}  // namespace rc

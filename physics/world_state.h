@@ -1,0 +1,251 @@
+// Ricochet physics: the world's internal state and the functions of its step.
+//
+// Internal to physics/: a game includes world.h, which shows the API and holds a WorldState
+// behind a pointer. The step's phases are member functions here, one file each (world.cpp reads
+// as their list): bodies and mass (body.cpp), islands and sleep (island.cpp), pairs and the
+// narrowphase (contact.cpp), the solver's stages (solver.cpp), continuous collision
+// (continuous.cpp), sensors (sensor.cpp) and queries (query.cpp).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "physics/broadphase.h"
+#include "physics/contact_solver.h"
+#include "physics/integrate.h"
+#include "physics/manifold.h"
+#include "physics/shapes.h"
+#include "physics/toi.h"
+#include "physics/trig.h"
+#include "physics/world.h"
+
+namespace rc {
+
+// Definition checks shared by the world's files: each throws InvalidDefinition naming what
+// was being defined and the field.
+[[noreturn]] void failDefinition(const char* what, const char* field, const std::string& why);
+void requireFinite(const char* what, const char* field, float v);
+void requireFinite(const char* what, const char* field, Vec2 v);
+void requireNonNegative(const char* what, const char* field, float v);
+// A number as people read it (%g): "0.1", "1e+30", "nan".
+std::string formatNumber(double v);
+
+// Two shape indices as one key, for the pair maps (lookups only: never iterated).
+inline std::uint64_t pairKey(std::int32_t a, std::int32_t b) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
+         static_cast<std::uint32_t>(b);
+}
+
+class WorldState {
+ public:
+  explicit WorldState(const WorldDef& def);
+
+  struct Body {
+    BodyType type = BodyType::staticBody;
+    bool alive = false;
+    bool fixedRotation = false;
+    bool bullet = false;
+    std::uint32_t generation = 0;
+    Transform xf;  // body origin and rotation (refreshed after every step)
+    float angle = 0;
+    Vec2 localCenter{};
+    Vec2 force{};
+    float torque = 0;
+    float mass = 0, invMass = 0, inertia = 0, invInertia = 0;
+    float linearDamping = 0, angularDamping = 0, gravityScale = 1;
+    float minExtent = 0, maxExtent = 0;  // for continuous collision (see continuous())
+    bool allowSleep = true;
+    float sleepTime = 0;       // how long it has been slower than the sleep tolerances
+    std::int32_t island = -1;  // its sleeping island, -1 while awake
+    std::uint64_t userData = 0;
+    std::int32_t slot = -1;  // in q_ and v_; -1 for static bodies
+    // Every shape a circle about the centre of mass: turning moves none of its contact
+    // geometry, so the solver does not rotate its contact anchors (see integratePositions).
+    bool round = false;
+    std::vector<std::int32_t> shapes;
+  };
+  struct ShapeRecord {
+    Shape shape = Circle{};
+    std::int32_t body = -1;
+    std::uint32_t generation = 0;
+    bool alive = false;
+    bool isSensor = false;
+    float density = 0, friction = 0, restitution = 0;
+    ProxyId proxy = kNullProxy;
+    std::uint64_t userData = 0;
+    BoundingCircle bound{};  // in the body frame: how far the shape reaches as the body turns
+  };
+  struct Contact {
+    std::int32_t shapeA = -1, shapeB = -1;  // shapeA < shapeB
+    Manifold manifold;
+    float normalImpulse[2] = {0, 0}, tangentImpulse[2] = {0, 0};
+    float friction = 0, restitution = 0;
+    bool touching = false;
+  };
+
+  // ---- bodies and shapes (body.cpp)
+  BodyId createBody(const BodyDef& def);
+  void destroyBody(BodyId id);
+  ShapeId createShape(BodyId body, const Shape& shape, const ShapeDef& def);
+  std::size_t checked(BodyId id) const;  // the body's index; throws for a stale or bad id
+  Body& body(BodyId id) { return bodies_[checked(id)]; }
+  const Body& body(BodyId id) const { return bodies_[checked(id)]; }
+  const ShapeRecord& shapeRecord(ShapeId id) const;  // throws for a stale or bad id
+  ShapeId shapeId(std::int32_t index) const {
+    return {index, shapes_[static_cast<std::size_t>(index)].generation};
+  }
+  BodyId bodyId(std::int32_t index) const {
+    return {index, bodies_[static_cast<std::size_t>(index)].generation};
+  }
+  Vec2 center(const Body& b) const;
+  Vec2 velocityOf(const Body& b) const;
+  // The body's origin in double (its centre minus the turned local centre): what the
+  // narrowphase takes differences of.
+  std::array<double, 2> preciseOrigin(const Body& b) const;
+  double preciseOrigin(const Body& b, int axis) const;  // one component: 0 x, 1 y
+  // An awake body's motion over the step so far, from where it started (float: for sweeps).
+  Sweep stepSweep(const Body& b) const;
+  bool isRound(const Body& b) const;  // see Body::round
+  void updateMass(Body& b);
+  void refitBody(Body& b, Vec2 displacement);
+  void swapSlots(std::int32_t a, std::int32_t b);
+
+  // ---- islands and sleep (island.cpp)
+  bool awake(const Body& b) const { return b.slot >= 0 && b.slot < awakeCount_; }
+  void wakeBody(Body& b);
+  void updateSleep(float dt);
+
+  // ---- contacts (contact.cpp)
+  void updatePairs();
+  void narrowphase(float dt);
+  void foresee(Manifold& m, const ShapeRecord& ra, const Transform& xfA, const ShapeRecord& rb,
+               const Transform& xfB, float dt) const;
+  void destroyContact(std::size_t index);
+
+  // ---- the solver's stages (solver.cpp)
+  void solve(float dt);
+  void prepareContacts();
+  void prepareBodies();
+  void integrateFreeMotion(int substep, float h);
+  void warmStart();
+  void integratePositions(float h);
+  void storeVelocities();
+  void loadVelocities(std::vector<SolverBody>& to) const;
+  void storeImpulses();
+  void applyRestitution();
+  template <class Solve>
+  void forEachBouncy(Solve&& solve);
+  void accelerations(std::span<const double> q, std::span<const float> v, float t,
+                     std::span<float> a);
+
+  // ---- after the solve (continuous.cpp, world.cpp, sensor.cpp)
+  void continuous();
+  void refit(float dt);
+  void updateSensors();
+  void destroySensorPair(std::size_t index);
+
+  // ---- queries (query.cpp)
+  CastOutput rayAgainst(ProxyId proxy, const RayCastInput& ray) const;
+  template <class Exact>
+  std::optional<WorldHit> closest(const RayCastInput& in, float radius, ProxyFilter filter,
+                                  Exact&& exact) const;
+
+  // ---- batched rotations: angles queued with their owners, their sines and cosines taken in
+  // one batch (rc::sincos overlaps independent calls), each owner handed its rotation.
+  // Room for n turns before any is queued, so that an allocation failure cannot leave the
+  // angles and their owners of different lengths.
+  void reserveTurns(std::size_t n) {
+    turnAngles_.reserve(n);
+    turnOwners_.reserve(n);
+    turnRotations_.reserve(n);
+  }
+  template <class Apply>
+  void applyTurns(Apply&& apply) {
+    turnRotations_.resize(turnAngles_.size());
+    sincos(turnAngles_, turnRotations_);
+    for (std::size_t k = 0; k < turnAngles_.size(); ++k)
+      apply(turnOwners_[k], Rot{turnRotations_[k].cosine, turnRotations_[k].sine});
+    turnAngles_.clear();
+    turnOwners_.clear();
+  }
+
+  WorldDef def_;
+  Quadtree broadphase_;
+  std::vector<Body> bodies_;
+  std::vector<std::int32_t> freeBodies_;
+  std::vector<ShapeRecord> shapes_;
+  std::vector<Contact> contacts_;
+  std::vector<ForceField> fields_;
+  // Per simulated (kinematic and dynamic) body, three degrees of freedom: x, y and angle of the
+  // centre of mass, and their velocities. Bodies hold their slot. Positions are doubles: 10 km
+  // out a float position moves in steps of 1 mm and a settling pile cannot take the small steps
+  // it needs (everything else, velocities, impulses, shapes and the narrowphase, which works
+  // relative to body A, is float).
+  std::vector<double> q_;
+  std::vector<float> v_;
+  std::vector<std::int32_t> slotBody_;
+  // Slots [0, awakeCount_) are awake; sleeping bodies' slots follow, untouched by the step.
+  int awakeCount_ = 0;
+  std::vector<std::vector<std::int32_t>> islands_;  // sleeping islands: their bodies
+  std::vector<std::int32_t> freeIslands_;
+  std::vector<std::int32_t> islandParent_;  // union-find over awake slots, per step
+  IntegratorScratch<float, double> scratch_;
+  std::vector<ProxyPair> newPairs_;
+  // Bodies created, moved or given a velocity since the last step: their proxies are stretched
+  // along their first step's motion before pairs are found.
+  std::vector<std::int32_t> pendingRefit_;
+  // The step's constraints, in the solver's order: the contact and bodies of each, and what
+  // the solver's colouring needs; the constraints with restitution, whole, and their indices.
+  struct ConstraintSource {
+    std::int32_t contact, bodyA, bodyB;
+  };
+  std::vector<ConstraintSource> constraintSources_;
+  std::vector<ConstraintBodies> constraintBodies_;
+  std::vector<ContactConstraint> bouncy_;
+  std::vector<std::int32_t> bouncyIndex_;
+  ContactSolver contactSolver_;
+  // Per slot during the solve: the free-motion velocities of the substep, and the solver's
+  // bodies (velocity, and how far each has moved and turned since the constraints were
+  // prepared), plus the null body at the end.
+  std::vector<float> freeV_;
+  std::vector<SolverBody> solverBodies_;
+  std::vector<SolverBody> freeMotion_;  // solverBodies_ before the warm start (restitution's)
+  std::vector<double> startCenter_;     // x and y per slot
+  std::vector<double> startAngle_;
+  // Body::round per slot, read each substep (a byte each, where the bodies are a cache miss).
+  std::vector<std::uint8_t> slotRound_;
+  std::vector<float> baseAccel_;      // per awake slot: gravity, force and torque accelerations
+  std::vector<std::int32_t> damped_;  // awake slots with linear or angular damping
+  // Angles whose sine and cosine are wanted, taken in one batch (see rc::sincos), and the
+  // bodies or slots they belong to.
+  std::vector<float> turnAngles_;
+  std::vector<SinCos> turnRotations_;
+  std::vector<std::int32_t> turnOwners_;
+  // Continuous collision: per shape, its index among the shapes whose candidates come from
+  // their contacts (-1 otherwise; reset after each step), those shapes, and their candidate
+  // lists (candidates_[candidateStart_[k] .. candidateStart_[k + 1]) for shape k).
+  std::vector<std::int32_t> contactSwept_;
+  std::vector<std::int32_t> sweptShapes_;
+  std::vector<std::int32_t> fastSlots_;  // the slots of bodies that moved far enough to sweep
+  std::vector<std::int32_t> candidateStart_, candidates_, fillCursor_;
+  ContactEvents events_;
+  SensorEvents sensorEvents_;
+  // Sensor shapes and the shapes whose fat AABBs overlap them.
+  struct SensorPair {
+    std::int32_t sensor, visitor;
+    bool overlapping = false;
+  };
+  std::vector<SensorPair> sensorPairs_;
+  std::unordered_map<std::uint64_t, std::int32_t> sensorIndex_;
+  // Contacts by their shape pair, for finding whether a new proxy pair already has one.
+  std::unordered_map<std::uint64_t, std::int32_t> contactIndex_;
+  Profile profile_;
+  double time_ = 0;
+  int bodyCount_ = 0;
+};
+
+}  // namespace rc

@@ -193,11 +193,8 @@ int runSim(std::span<const std::string_view> args) {
   if (trace.empty() != csvPath.empty()) return usageError("--trace and --csv go together");
   if (framesDir.empty() && !sheetPath.empty()) return usageError("--sheet needs --frames");
   if (framesDir.empty() && !videoPath.empty()) return usageError("--video needs --frames");
-  if (lanes != 0) {
-    rc::ContactSolver::limitLanes(static_cast<int>(lanes));
-    if (rc::ContactSolver::widestLanes() != lanes)
-      return usageError("--lanes 8 needs a processor with AVX2, which this one lacks");
-  }
+  if (lanes == 8 && rc::ContactSolver::widestLanes() != 8)
+    return usageError("--lanes 8 needs a processor with AVX2, which this one lacks");
 #ifndef RICOCHET_HAS_RENDER
   if (!framesDir.empty())
     return usageError(
@@ -212,6 +209,7 @@ int runSim(std::span<const std::string_view> args) {
       if (!m) return usageError("unknown integrator '" + integrator + "'");
       scene.world.integrator = *m;
     }
+    if (lanes != 0) scene.world.maxSolverLanes = static_cast<int>(lanes);
     std::vector<std::size_t> traced;
     std::string error;
     if (!trace.empty() && !resolveTrace(trace, scene, traced, error)) return usageError(error);
@@ -300,7 +298,7 @@ int runSim(std::span<const std::string_view> args) {
           "refit %.4f sensors %.4f sleep %.4f total %.4f lanes %d\n",
           sum.updatePairs * perStep, sum.narrowphase * perStep, sum.solve * perStep,
           sum.continuous * perStep, sum.refit * perStep, sum.sensors * perStep, sum.sleep * perStep,
-          sum.total * perStep, rc::ContactSolver::widestLanes());
+          sum.total * perStep, built.world->profile().lanes);
     return 0;
   } catch (const SceneError& e) {
     std::fprintf(stderr, "ricochet sim: %s\n", e.what());

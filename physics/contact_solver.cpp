@@ -575,11 +575,9 @@ int ContactSolver::laneCount() const {
 int ContactSolver::widestLanes() {
   return simd::avx2Enabled() ? 8 : 4;
 }
-void ContactSolver::limitLanes(int maxLanes) {
-  simd::enableAvx2(maxLanes >= 8);
-}
 
-void ContactSolver::prepare(std::span<const ConstraintBodies> constraints, int bodyCount) {
+void ContactSolver::prepare(std::span<const ConstraintBodies> constraints, int bodyCount,
+                            int maxLanes) {
   Data& d = *data_;
   // Greedy colouring in constraint order: each takes the lowest colour neither of its moving
   // bodies has yet.
@@ -608,7 +606,7 @@ void ContactSolver::prepare(std::span<const ConstraintBodies> constraints, int b
     d.colours += perColour[k] > 0;
   d.overflow = perColour[kColours];
 
-  d.lanes = widestLanes();
+  d.lanes = maxLanes >= 8 ? widestLanes() : 4;
   if (d.lanes == 8) {
     layoutBatches<8>(constraints, d.colour, perColour, bodyCount, d.batches8, d.constraintLane);
   } else {

@@ -95,7 +95,8 @@ class ContactSolver {
   // its lane by set(i, ...), before the first warmStart. bodyCount bodies are indexed by slotA /
   // slotB; the solver bodies passed to the calls below have one more entry at the end, the null
   // body (zero velocity, no motion), which static bodies and empty lanes point at.
-  void prepare(std::span<const ConstraintBodies> constraints, int bodyCount);
+  // maxLanes (4 or 8) caps the batch width: 8 is taken only where the processor has AVX2.
+  void prepare(std::span<const ConstraintBodies> constraints, int bodyCount, int maxLanes);
   // Constraint i (in prepare's order), what the caller sets of it (see ConstraintPoint):
   // straight into the batch's lanes, with no array of constraints in between (copying one and
   // repacking it was a sixth of a pyramid's step).
@@ -125,13 +126,9 @@ class ContactSolver {
   int overflowCount() const;  // constraints solved one at a time
   int laneCount() const;      // constraints per batch in the last prepare(): 4 or 8
 
-  // The batch width prepare() takes: 8 (one AVX2 register) where the processor has AVX2, else 4
-  // (SSE2, NEON), at most the limit set below. Either width gives bit-identical results.
+  // The widest batch this processor takes: 8 (one AVX2 register) where it has AVX2, else 4
+  // (SSE2, NEON). Either width gives bit-identical results.
   static int widestLanes();
-  // Caps the width for every solver in the process from the next prepare() on (4: the baseline
-  // width on any processor), to check that a recording's hashes do not depend on it. 4 also
-  // turns off the other AVX2 paths (simd::enableAvx2).
-  static void limitLanes(int maxLanes);
 
  private:
   struct Data;

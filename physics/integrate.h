@@ -78,11 +78,12 @@ struct IntegratorScratch {
 };
 
 // One step of size h from time t: q and v (the same length) are advanced in place.
-// accel(std::span<const Q> q, std::span<const T> v, T t, std::span<T> a) writes the
-// accelerations at that state. Increments are computed in T and added to the positions in Q.
+// accel(std::span<const Q> q, std::span<const T> v, Q t, std::span<T> a) writes the
+// accelerations at that state. Increments are computed in T and added to the positions in Q;
+// time is kept in Q too (a float clock is coarse after hours: 4 ms steps at 2^15 s).
 template <class T, class Q = T, class Accel>
 void integrate(Integrator method, std::type_identity_t<std::span<Q>> q,
-               std::type_identity_t<std::span<T>> v, T t, T h, Accel&& accel,
+               std::type_identity_t<std::span<T>> v, std::type_identity_t<Q> t, T h, Accel&& accel,
                IntegratorScratch<T, Q>& s) {
   const std::size_t n = q.size();
   const std::span<T> a = s.take(s.a, n);
@@ -108,7 +109,7 @@ void integrate(Integrator method, std::type_identity_t<std::span<Q>> q,
         v[i] += half * a[i];
         q[i] += h * v[i];
       }
-      accel(std::span<const Q>(q), std::span<const T>(v), t + h, a);
+      accel(std::span<const Q>(q), std::span<const T>(v), t + Q(h), a);
       for (std::size_t i = 0; i < n; ++i)
         v[i] += half * a[i];
       return;
@@ -125,7 +126,7 @@ void integrate(Integrator method, std::type_identity_t<std::span<Q>> q,
       }
       // k2 and k3, both at t + h/2; each sets up the next stage, at t + h/2 and at t + h.
       for (const T next : {half, h}) {
-        accel(std::span<const Q>(qs), std::span<const T>(vs), t + half, a);
+        accel(std::span<const Q>(qs), std::span<const T>(vs), t + Q(half), a);
         for (std::size_t i = 0; i < n; ++i) {
           const T kq = vs[i];
           dq[i] += T(2) * kq;
@@ -134,7 +135,7 @@ void integrate(Integrator method, std::type_identity_t<std::span<Q>> q,
           vs[i] = v[i] + next * a[i];
         }
       }
-      accel(std::span<const Q>(qs), std::span<const T>(vs), t + h, a);  // k4
+      accel(std::span<const Q>(qs), std::span<const T>(vs), t + Q(h), a);  // k4
       const T sixth = h / T(6);
       for (std::size_t i = 0; i < n; ++i) {
         q[i] += sixth * (dq[i] + vs[i]);

@@ -35,17 +35,14 @@ struct Lanes<8> {
 };
 
 // Code compiled for AVX2 (the solver's eight-lane batches, the batched sine and cosine) runs
-// where the processor has AVX2 and the width has not been capped; otherwise the baseline code
-// runs. Both give the same bits.
+// where the processor has AVX2; otherwise the baseline code runs. Both give the same bits (a
+// world can still ask for the baseline width: WorldDef::maxSolverLanes).
 #if defined(__x86_64__) || defined(__i386__)
 #define RC_HAVE_AVX2_PATHS 1
 #else
 #define RC_HAVE_AVX2_PATHS 0
 #endif
 bool avx2Enabled();
-// false: the baseline code from now on, in every thread (to check that results do not
-// depend on the width; `ricochet sim --lanes 4`).
-void enableAvx2(bool enable);
 
 // The helpers below are always inlined, so that a caller compiled for a wider instruction set
 // (an AVX2 function) gets them in its own instructions, and they call no library function: in a

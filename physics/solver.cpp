@@ -21,7 +21,7 @@ void applyImpulse(const Constraint& cc, const Point& p, Vec2 P, Vec2& vA, float&
 
 }  // namespace
 
-void WorldState::accelerations(std::span<const double> q, std::span<const float> v, float t,
+void WorldState::accelerations(std::span<const double> q, std::span<const float> v, double t,
                                std::span<float> a) {
   // The step's constant part (gathered in solve(): gravity, forces, torques), then the fields.
   std::copy_n(baseAccel_.begin(), 3 * static_cast<std::size_t>(awakeCount_), a.begin());
@@ -96,9 +96,10 @@ void WorldState::prepareContacts() {
     constraintBodies_.push_back({slotA, slotB, a.invMass > 0.0f || a.invInertia > 0.0f,
                                  b.invMass > 0.0f || b.invInertia > 0.0f, c.manifold.pointCount});
   }
-  contactSolver_.prepare(constraintBodies_, awakeCount_);
+  contactSolver_.prepare(constraintBodies_, awakeCount_, def_.maxSolverLanes);
   profile_.colours = contactSolver_.colourCount();
   profile_.overflow = contactSolver_.overflowCount();
+  profile_.lanes = contactSolver_.laneCount();
 
   for (std::size_t i = 0; i < constraintSources_.size(); ++i) {
     const ConstraintSource& source = constraintSources_[i];
@@ -192,7 +193,7 @@ void WorldState::loadVelocities(std::vector<SolverBody>& to) const {
 // (implicit, unconditionally stable); the free velocities are kept for the position update.
 void WorldState::integrateFreeMotion(int substep, float h) {
   const auto slots = static_cast<std::size_t>(awakeCount_);
-  const float t = static_cast<float>(time_) + static_cast<float>(substep) * h;
+  const double t = time_ + static_cast<double>(substep) * static_cast<double>(h);
   const std::span<double> q(q_.data(), 3 * slots);
   const std::span<float> v(v_.data(), 3 * slots);
   // Restitution reverses the approach speed at the impact, read from the velocity the
@@ -204,7 +205,7 @@ void WorldState::integrateFreeMotion(int substep, float h) {
     freeMotion_.assign(slots + 1, SolverBody{});
     loadVelocities(freeMotion_);
   }
-  auto accel = [this](std::span<const double> qs, std::span<const float> vs, float ts,
+  auto accel = [this](std::span<const double> qs, std::span<const float> vs, double ts,
                       std::span<float> a) { accelerations(qs, vs, ts, a); };
   integrate<float, double>(def_.integrator, q, v, t, h, accel, scratch_);
   // Only the damped bodies: reading every awake body's damping is a cache miss per body.

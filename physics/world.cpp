@@ -43,7 +43,9 @@ void requireNonNegative(const char* what, const char* field, float v) {
   if (v < 0.0f) failDefinition(what, field, "is " + formatNumber(v) + " (must be >= 0)");
 }
 
-WorldState::WorldState(const WorldDef& def) : def_(def), broadphase_(def.bounds) {}
+WorldState::WorldState(const WorldDef& def) : def_(def), broadphase_(def.bounds) {
+  profile_.lanes = def.maxSolverLanes >= 8 ? ContactSolver::widestLanes() : 4;
+}
 
 World::World(const WorldDef& def) {
   requireFinite("world", "gravity", def.gravity);
@@ -54,6 +56,9 @@ World::World(const WorldDef& def) {
   requireNonNegative("world", "contactHertz", def.contactHertz);
   requireNonNegative("world", "contactDampingRatio", def.contactDampingRatio);
   requireNonNegative("world", "maxPushoutSpeed", def.maxPushoutSpeed);
+  if (def.maxSolverLanes != 4 && def.maxSolverLanes != 8)
+    failDefinition("world", "maxSolverLanes",
+                   "is " + std::to_string(def.maxSolverLanes) + " (must be 4 or 8)");
   s_ = std::make_unique<WorldState>(def);
 }
 World::~World() = default;

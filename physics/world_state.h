@@ -139,7 +139,7 @@ class WorldState {
   void applyRestitution();
   template <class Solve>
   void forEachBouncy(Solve&& solve);
-  void accelerations(std::span<const double> q, std::span<const float> v, float t,
+  void accelerations(std::span<const double> q, std::span<const float> v, double t,
                      std::span<float> a);
 
   // ---- after the solve (continuous.cpp, world.cpp, sensor.cpp)

@@ -425,7 +425,7 @@ TEST(World, FreeBodiesFollowTheIntegratorExactly) {
     rc::IntegratorScratch<float, double> scratch;
     const float h = 1.0f / 240.0f;
     // The force field sees the centre as a float (ForceStage::center).
-    auto spring = [&](std::span<const double> x, std::span<const float>, float,
+    auto spring = [&](std::span<const double> x, std::span<const float>, double,
                       std::span<float> a) {
       a[0] = (1.0f / mass) * (-k * static_cast<float>(x[0]));
       a[1] = (1.0f / mass) * (-k * static_cast<float>(x[1]));
@@ -1242,8 +1242,10 @@ TEST(World, SameSceneSameHash) {
 // circles, capsules and triangles of random sizes, friction and restitution (some bouncing),
 // dropped into a bin whose floor is a kinematic body sliding to and fro, some bodies spinning.
 std::vector<std::uint64_t> mixedSceneHashes(int lanes) {
-  rc::ContactSolver::limitLanes(lanes);
-  rc::World w;
+  rc::WorldDef def;
+  def.maxSolverLanes = lanes;
+  rc::World w(def);
+  EXPECT_EQ(w.profile().lanes, lanes);
   ground(w);
   rc::BodyDef floorDef;
   floorDef.type = rc::BodyType::kinematicBody;
@@ -1285,14 +1287,13 @@ std::vector<std::uint64_t> mixedSceneHashes(int lanes) {
     w.step(1.0f / 60.0f);
     hashes.push_back(w.stateHash());
   }
-  rc::ContactSolver::limitLanes(8);
+  EXPECT_EQ(w.profile().lanes, lanes);
   return hashes;
 }
 
 // Constraints of one colour move no body in common, so solving them four or eight at a time is
 // solving them one after the other: the two widths must agree bit for bit at every step.
 TEST(World, SolverWidthDoesNotChangeTheResult) {
-  rc::ContactSolver::limitLanes(8);
   if (rc::ContactSolver::widestLanes() != 8) GTEST_SKIP() << "this processor has no AVX2";
   const std::vector<std::uint64_t> four = mixedSceneHashes(4), eight = mixedSceneHashes(8);
   ASSERT_EQ(four.size(), eight.size());

@@ -1,11 +1,11 @@
 // Scene files: a JSON description of a world (settings, integrator, gravity, bodies, shapes,
 // materials, initial velocities), read into plain definitions that our World and the Box2D
 // adapter in tests/ both build from, and the state format both write. The format is
-// documented in the README ("Scene files").
+// documented in game/README.md ("Scene files").
 //
-// Every error names the file, the body (index and name) or setting, and the field, on one
-// line: "scenes/pile.json: body 3 ("crate"), shapes[0].radius: must be > 0, got -1". Unknown
-// fields are errors too (a typo must not silently fall back to a default).
+// Every error names the file, the body (index and name) or setting, and the field, on one line:
+// "scenes/pile.json: body 3 ("crate"), shapes[0]: circle: radius must be positive, got -1".
+// Unknown fields are errors too (a typo must not silently fall back to a default).
 #pragma once
 
 #include <cstdint>

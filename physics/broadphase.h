@@ -13,7 +13,7 @@
 //               doubly linked lists of proxies, so moving a proxy never allocates.
 //   BruteForce  every proxy against every proxy: the reference for the tests. The Quadtree
 //               itself answers by brute force while it holds few proxies (kBruteForceBelow,
-//               measured: see the README's Performance section).
+//               measured: see tests/bench/README.md, broadphase).
 //
 // Why a loose quadtree: the scenes of a top-down shooter are a few hundred static walls and up
 // to tens of thousands of similar-sized movers. Those all land on one or two levels, where a

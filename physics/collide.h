@@ -50,7 +50,7 @@ inline Manifold collide(const Shape& a, const Transform& xfA, const Shape& b, co
 // Do the shapes overlap (touching counts)? Closed forms for circles, the separating axis test
 // for sharp polygons, GJK for the rest. No bounding-circle test first: callers come through the
 // broadphase, whose AABB test is the cheap bound, and after it the circles cost more than they
-// saved (geometry_bench, overlap-prefilter rows: README, Performance).
+// saved (geometry_bench, overlap-prefilter rows: tests/bench/README.md).
 inline bool testOverlap(const Shape& a, const Transform& xfA, const Shape& b,
                         const Transform& xfB) {
   const detail::PairEntry& e =

@@ -1,72 +1,42 @@
-// Bodies and their shapes: creation and destruction, mass, state, forces and impulses.
+// Bodies: creation and destruction (generational slots), their simulated slots, enabling and
+// disabling, state, setters, forces and impulses; what a force field sees (ForceStage).
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <string>
 
 #include "physics/world.h"
 #include "physics/world_state.h"
 
 namespace rc {
-namespace {
 
-// Half the thinnest width of a shape: it cannot pass through anything while it moves less than
-// this per step. (The polygon's value is its inscribed radius about the centroid, a lower
-// bound.)
-float thickness(const Shape& s) {
-  switch (s.type) {
-    case ShapeType::circle:
-      return s.circle.radius;
-    case ShapeType::box:
-      return std::min(s.box.halfExtents.x, s.box.halfExtents.y);
-    case ShapeType::capsule:
-      return s.capsule.radius;
-    case ShapeType::polygon: {
-      float r = std::numeric_limits<float>::max();
-      for (int i = 0; i < s.polygon.count; ++i)
-        r = std::min(r, dot(s.polygon.normals[i], s.polygon.vertices[i] - s.polygon.centroid));
-      return r + s.polygon.radius;
-    }
-    case ShapeType::segment:
-    case ShapeType::chainSegment:
-      return 0.0f;
-  }
-  return 0.0f;
-}
+// ------------------------------------------------------------------------------ ForceStage
 
-// A body's extents for continuous collision, widened by one of its shapes: the thinnest shape's
-// half-thickness (a lower bound) and the farthest reach from the body origin.
-void widenExtents(float& minExtent, float& maxExtent, const Shape& s, const BoundingCircle& bound) {
-  minExtent = std::min(minExtent, thickness(s));
-  maxExtent = std::max(maxExtent, length(bound.center) + bound.radius);
-}
-
-// A circle about the body's centre of mass: a body of nothing else is round (Body::round).
-bool centredCircle(const Shape& s, Vec2 localCenter) {
-  return s.type == ShapeType::circle && s.circle.center == localCenter;
-}
-
-}  // namespace
-
-// ------------------------------------------------------------------------------------ ForceStage
-
+// The stage's slot of an awake body, or -1 (static, asleep or disabled: seen as the world keeps
+// it). A stale id is remembered (step() reports it once the step is done) and reads as -2.
 int ForceStage::slot(BodyId id) const {
-  return world_.body(id).slot;
+  const WorldState::Body* b = world_.find(id);
+  if (b == nullptr) {
+    if (!world_.staleFieldId_) world_.staleFieldId_ = id;
+    return -2;
+  }
+  return world_.awake(*b) ? b->slot : -1;
 }
 Vec2 ForceStage::center(BodyId id) const {
   const int s = slot(id);
-  if (s < 0) return world_.center(world_.body(id));
+  if (s == -2) return {};
+  if (s < 0) return world_.center(world_.bodies_[static_cast<std::size_t>(id.index)]);
   return {static_cast<float>(q_[3 * static_cast<std::size_t>(s)]),
           static_cast<float>(q_[3 * static_cast<std::size_t>(s) + 1])};
 }
 float ForceStage::angle(BodyId id) const {
   const int s = slot(id);
-  return s < 0 ? world_.body(id).angle
+  if (s == -2) return 0.0f;
+  return s < 0 ? world_.bodies_[static_cast<std::size_t>(id.index)].angle
                : static_cast<float>(q_[3 * static_cast<std::size_t>(s) + 2]);
 }
 Vec2 ForceStage::velocity(BodyId id) const {
   const int s = slot(id);
-  if (s < 0) return {};
+  if (s < 0) return {};  // static, asleep (at rest) or stale
   return {v_[3 * static_cast<std::size_t>(s)], v_[3 * static_cast<std::size_t>(s) + 1]};
 }
 float ForceStage::angularVelocity(BodyId id) const {
@@ -74,46 +44,61 @@ float ForceStage::angularVelocity(BodyId id) const {
   return s < 0 ? 0.0f : v_[3 * static_cast<std::size_t>(s) + 2];
 }
 void ForceStage::addForce(BodyId id, Vec2 force) {
-  const WorldState::Body& b = world_.body(id);
-  if (b.type != BodyType::dynamicBody) return;
-  const auto i = 3 * static_cast<std::size_t>(b.slot);
+  const int s = slot(id);
+  if (s == -2) return;
+  const WorldState::Body& b = world_.bodies_[static_cast<std::size_t>(id.index)];
+  if (b.type != BodyType::dynamicBody || !b.enabled) return;
+  if (!isFinite(force)) {
+    world_.quarantine_.emplace_back(id.index, QuarantineCause::forceField);
+    return;
+  }
+  if (s < 0) {
+    // Asleep: it cannot join a step under way; it wakes after it, and the field acts from the
+    // next step on.
+    if (force != Vec2{}) world_.fieldWakes_.push_back(id.index);
+    return;
+  }
+  const auto i = 3 * static_cast<std::size_t>(s);
   a_[i] += b.invMass * force.x;
   a_[i + 1] += b.invMass * force.y;
 }
 void ForceStage::addTorque(BodyId id, float torque) {
-  const WorldState::Body& b = world_.body(id);
-  if (b.type != BodyType::dynamicBody) return;
-  a_[3 * static_cast<std::size_t>(b.slot) + 2] += b.invInertia * torque;
+  const int s = slot(id);
+  if (s == -2) return;
+  const WorldState::Body& b = world_.bodies_[static_cast<std::size_t>(id.index)];
+  if (b.type != BodyType::dynamicBody || !b.enabled) return;
+  if (!std::isfinite(torque)) {
+    world_.quarantine_.emplace_back(id.index, QuarantineCause::forceField);
+    return;
+  }
+  if (s < 0) {
+    if (torque != 0.0f) world_.fieldWakes_.push_back(id.index);
+    return;
+  }
+  a_[3 * static_cast<std::size_t>(s) + 2] += b.invInertia * torque;
 }
 void ForceStage::addForceAt(BodyId id, Vec2 force, Vec2 worldPoint) {
   addForce(id, force);
   addTorque(id, cross(worldPoint - center(id), force));
 }
 
+// ------------------------------------------------------------------------------ lookups
+
+const WorldState::Body* WorldState::find(BodyId id) const {
+  if (id.index < 0 || static_cast<std::size_t>(id.index) >= bodies_.size()) return nullptr;
+  const Body& b = bodies_[static_cast<std::size_t>(id.index)];
+  return b.alive && b.generation == id.generation ? &b : nullptr;
+}
+
 std::size_t WorldState::checked(BodyId id) const {
-  if (id.index < 0 || static_cast<std::size_t>(id.index) >= bodies_.size() ||
-      !bodies_[static_cast<std::size_t>(id.index)].alive ||
-      bodies_[static_cast<std::size_t>(id.index)].generation != id.generation)
+  if (find(id) == nullptr)
     throw std::invalid_argument("world: body " + std::to_string(id.index) + " (generation " +
                                 std::to_string(id.generation) + ") does not exist");
   return static_cast<std::size_t>(id.index);
 }
 
 bool World::isValid(BodyId id) const {
-  const auto& bodies = s_->bodies_;
-  return id.index >= 0 && static_cast<std::size_t>(id.index) < bodies.size() &&
-         bodies[static_cast<std::size_t>(id.index)].alive &&
-         bodies[static_cast<std::size_t>(id.index)].generation == id.generation;
-}
-
-BodyId World::createBody(const BodyDef& def) {
-  return s_->createBody(def);
-}
-void World::destroyBody(BodyId id) {
-  s_->destroyBody(id);
-}
-ShapeId World::createShape(BodyId body, const Shape& shape, const ShapeDef& def) {
-  return s_->createShape(body, shape, def);
+  return s_->find(id) != nullptr;
 }
 
 Vec2 WorldState::velocityOf(const Body& b) const {
@@ -148,6 +133,8 @@ double WorldState::preciseOrigin(const Body& b, int axis) const {
 std::array<double, 2> WorldState::preciseOrigin(const Body& b) const {
   return {preciseOrigin(b, 0), preciseOrigin(b, 1)};
 }
+
+// ------------------------------------------------------------------- creation, destruction
 
 BodyId WorldState::createBody(const BodyDef& def) {
   requireFinite("body", "position", def.position);
@@ -184,16 +171,8 @@ BodyId WorldState::createBody(const BodyDef& def) {
   b.bullet = def.bullet;
   b.allowSleep = def.allowSleep;
   b.userData = def.userData;
-  if (def.type != BodyType::staticBody) {
-    b.slot = static_cast<std::int32_t>(slotBody_.size());
-    slotBody_.push_back(index);
-    q_.insert(q_.end(), {def.position.x, def.position.y, def.angle});
-    const float w = def.fixedRotation ? 0.0f : def.angularVelocity;
-    v_.insert(v_.end(), {def.linearVelocity.x, def.linearVelocity.y, w});
-    // Into the awake slots, before the sleeping ones.
-    swapSlots(b.slot, awakeCount_);
-    ++awakeCount_;
-  }
+  if (def.type != BodyType::staticBody)
+    takeSlot(index, def.linearVelocity, def.fixedRotation ? 0.0f : def.angularVelocity);
   updateMass(b);
   if (b.slot >= 0) pendingRefit_.push_back(index);
   ++bodyCount_;
@@ -204,39 +183,45 @@ void WorldState::destroyBody(BodyId id) {
   const std::size_t index = checked(id);
   Body& b = bodies_[index];
   wakeBody(b);
-  // Its contacts (back to front: removal swaps the last contact in); what it touched wakes.
-  for (std::size_t c = contacts_.size(); c-- > 0;) {
-    const Contact& k = contacts_[c];
-    const std::int32_t bodyA = shapes_[static_cast<std::size_t>(k.shapeA)].body;
-    const std::int32_t bodyB = shapes_[static_cast<std::size_t>(k.shapeB)].body;
-    if (bodyA != id.index && bodyB != id.index) continue;
-    if (k.touching) wakeBody(bodies_[static_cast<std::size_t>(bodyA == id.index ? bodyB : bodyA)]);
-    destroyContact(c);
-  }
-  for (std::size_t k = sensorPairs_.size(); k-- > 0;) {
-    const SensorPair& sp = sensorPairs_[k];
-    if (shapes_[static_cast<std::size_t>(sp.sensor)].body == id.index ||
-        shapes_[static_cast<std::size_t>(sp.visitor)].body == id.index)
-      destroySensorPair(k);
-  }
+  removeProxies(b);
   for (std::int32_t s : b.shapes) {
-    ShapeRecord& r = shapes_[static_cast<std::size_t>(s)];
-    broadphase_.destroyProxy(r.proxy);
-    r.alive = false;
+    shapes_[static_cast<std::size_t>(s)].alive = false;
+    freeShapes_.push_back(s);
+    --shapeCount_;
   }
-  if (b.slot >= 0) {
-    // To the end of the awake slots, then to the very end, then gone.
-    swapSlots(b.slot, awakeCount_ - 1);
-    swapSlots(b.slot, static_cast<std::int32_t>(slotBody_.size()) - 1);
-    --awakeCount_;
-    slotBody_.pop_back();
-    q_.resize(q_.size() - 3);
-    v_.resize(v_.size() - 3);
-  }
+  if (b.slot >= 0) releaseSlot(b);
   b.alive = false;
   b.shapes.clear();
   freeBodies_.push_back(id.index);
   --bodyCount_;
+}
+
+// A new slot at the end, then swapped into the awake slots, before the sleeping ones.
+void WorldState::takeSlot(std::int32_t index, Vec2 velocity, float angularVelocity) {
+  Body& b = bodies_[static_cast<std::size_t>(index)];
+  b.slot = static_cast<std::int32_t>(slotBody_.size());
+  slotBody_.push_back(index);
+  const Vec2 c = apply(b.xf, b.localCenter);
+  q_.insert(q_.end(), {c.x, c.y, b.angle});
+  v_.insert(v_.end(), {velocity.x, velocity.y, angularVelocity});
+  swapSlots(b.slot, awakeCount_);
+  ++awakeCount_;
+}
+
+// Out of the awake slots if it is in them, then to the very end, then gone. The body keeps
+// its transform (xf), rounded to float.
+void WorldState::releaseSlot(Body& b) {
+  const std::array<double, 2> origin = preciseOrigin(b);
+  b.xf.p = {static_cast<float>(origin[0]), static_cast<float>(origin[1])};
+  if (awake(b)) {
+    swapSlots(b.slot, awakeCount_ - 1);
+    --awakeCount_;
+  }
+  swapSlots(b.slot, static_cast<std::int32_t>(slotBody_.size()) - 1);
+  slotBody_.pop_back();
+  q_.resize(q_.size() - 3);
+  v_.resize(v_.size() - 3);
+  b.slot = -1;
 }
 
 void WorldState::swapSlots(std::int32_t a, std::int32_t b) {
@@ -251,112 +236,70 @@ void WorldState::swapSlots(std::int32_t a, std::int32_t b) {
   bodies_[static_cast<std::size_t>(slotBody_[static_cast<std::size_t>(b)])].slot = b;
 }
 
-ShapeId WorldState::createShape(BodyId bodyId, const Shape& shape, const ShapeDef& def) {
-  const std::size_t bi = checked(bodyId);
-  try {
-    validate(shape);
-  } catch (const InvalidShape& e) {
-    throw InvalidDefinition(std::string("shape: ") + e.what());
+// A disabled body keeps its slot, after the awake ones and in no island, so its state stays.
+void WorldState::disable(Body& b) {
+  if (!b.enabled) return;
+  wakeBody(b);  // out of its island
+  removeProxies(b);
+  if (awake(b)) {
+    swapSlots(b.slot, awakeCount_ - 1);
+    --awakeCount_;
   }
-  requireNonNegative("shape", "density", def.density);
-  requireNonNegative("shape", "friction", def.friction);
-  requireNonNegative("shape", "restitution", def.restitution);
-  if (!shape.isSolid() && bodies_[bi].type == BodyType::dynamicBody)
-    failDefinition("shape", "type",
-                   std::string("is a ") + shapeTypeName(shape.type) +
-                       ", which has no area: only static and kinematic bodies may carry it");
-  const auto index = static_cast<std::int32_t>(shapes_.size());
-  ShapeRecord r;
-  r.shape = shape;
-  r.body = bodyId.index;
-  r.generation = 1;
-  r.alive = true;
-  r.isSensor = def.isSensor;
-  r.density = def.density;
-  r.friction = def.friction;
-  r.restitution = def.restitution;
-  r.userData = def.userData;
-  r.bound = computeBoundingCircle(shape);
-  Body& b = bodies_[bi];
-  ProxyDef proxy;
-  proxy.aabb = computeAABB(shape, b.xf);
-  proxy.filter = def.filter;
-  proxy.isStatic = b.type == BodyType::staticBody;
-  proxy.userData = static_cast<std::uint64_t>(index);
-  r.proxy = broadphase_.createProxy(proxy);
-  shapes_.push_back(r);
-  b.shapes.push_back(index);
-  if (b.type == BodyType::dynamicBody) {
-    updateMass(b);
-  } else {
-    // No mass to combine: the new shape only widens the extents, which updateMass would find by
-    // walking every shape of the body again (a level's walls as 20,000 tiles on one static body
-    // took 2 s to create, quadratically).
-    if (b.shapes.size() == 1) {
-      b.minExtent = std::numeric_limits<float>::max();
-      b.maxExtent = 0.0f;
-      b.round = true;
+  b.enabled = false;
+}
+
+void WorldState::enable(Body& b) {
+  if (b.enabled) return;
+  b.enabled = true;
+  b.sleepTime = 0.0f;
+  if (b.slot >= 0) {
+    swapSlots(b.slot, awakeCount_);
+    ++awakeCount_;
+    pendingRefit_.push_back(static_cast<std::int32_t>(&b - bodies_.data()));
+  }
+  addProxies(b);
+}
+
+void WorldState::refitBody(Body& b, Vec2 displacement) {
+  if (!b.enabled) return;  // no proxies
+  if (b.round && b.slot >= 0) {
+    // Circles about the centre of mass: their box is the centre (kept in double) plus and minus
+    // the radius, with no rotation and no dispatch on the shape type.
+    const auto i = 3 * static_cast<std::size_t>(b.slot);
+    const Vec2 c{static_cast<float>(q_[i]), static_cast<float>(q_[i + 1])};
+    for (std::int32_t s : b.shapes) {
+      const ShapeRecord& r = shapes_[static_cast<std::size_t>(s)];
+      const float radius = r.shape.circle.radius;
+      broadphase_.moveProxy(r.proxy, {{c.x - radius, c.y - radius}, {c.x + radius, c.y + radius}},
+                            displacement);
     }
-    widenExtents(b.minExtent, b.maxExtent, shape, r.bound);
-    b.round = b.round && centredCircle(shape, b.localCenter);
-  }
-  if (b.slot >= 0) pendingRefit_.push_back(bodyId.index);
-  return {index, 1};
-}
-
-bool WorldState::isRound(const Body& b) const {
-  if (b.shapes.empty()) return false;
-  for (std::int32_t s : b.shapes) {
-    if (!centredCircle(shapes_[static_cast<std::size_t>(s)].shape, b.localCenter)) return false;
-  }
-  return true;
-}
-
-void WorldState::updateMass(Body& b) {
-  b.mass = b.invMass = b.inertia = b.invInertia = 0.0f;
-  b.minExtent = std::numeric_limits<float>::max();
-  b.maxExtent = 0.0f;
-  for (std::int32_t s : b.shapes) {
-    const ShapeRecord& r = shapes_[static_cast<std::size_t>(s)];
-    widenExtents(b.minExtent, b.maxExtent, r.shape, r.bound);
-  }
-  if (b.type != BodyType::dynamicBody) {
-    b.localCenter = {};
-    b.round = isRound(b);
     return;
   }
-  std::vector<MassData> parts;
   for (std::int32_t s : b.shapes) {
     const ShapeRecord& r = shapes_[static_cast<std::size_t>(s)];
-    if (r.shape.isSolid() && r.density > 0.0f) parts.push_back(computeMass(r.shape, r.density));
+    broadphase_.moveProxy(r.proxy, computeAABB(r.shape, b.xf), displacement);
   }
-  const MassData m = combineMass(parts);
-  const std::array<double, 2> origin = preciseOrigin(b);
-  const Vec2 oldLocalCenter = b.localCenter;
-  if (m.mass > 0.0f) {
-    b.mass = m.mass;
-    b.localCenter = m.center;
-    b.inertia = m.inertia;
-  } else {
-    // A dynamic body needs mass: 1 kg at the origin, as Box2D does.
-    b.mass = 1.0f;
-    b.localCenter = {};
-  }
-  b.invMass = 1.0f / b.mass;
-  b.invInertia = (b.fixedRotation || b.inertia <= 0.0f) ? 0.0f : 1.0f / b.inertia;
-  b.round = isRound(b);
-  // The centre of mass moved: keep the origin where it is and the motion of every point.
-  const auto i = 3 * static_cast<std::size_t>(b.slot);
-  const Vec2 turned = rotate(b.xf.q, b.localCenter);
-  const float w = v_[i + 2];
-  const Vec2 shift = cross(w, rotate(b.xf.q, b.localCenter - oldLocalCenter));
-  q_[i] = origin[0] + turned.x;
-  q_[i + 1] = origin[1] + turned.y;
-  v_[i] += shift.x;
-  v_[i + 1] += shift.y;
 }
 
-// ------------------------------------------------------------------------------ accessors
+BodyId World::createBody(const BodyDef& def) {
+  return s_->createBody(def);
+}
+void World::destroyBody(BodyId id) {
+  s_->destroyBody(id);
+}
+
+std::vector<BodyId> World::bodies() const {
+  std::vector<BodyId> out;
+  for (std::size_t i = 0; i < s_->bodies_.size(); ++i)
+    if (s_->bodies_[i].alive) out.push_back(s_->bodyId(static_cast<std::int32_t>(i)));
+  return out;
+}
+
+int World::bodyCount() const {
+  return s_->bodyCount_;
+}
+
+// ------------------------------------------------------------------------------ state
 
 Vec2 World::position(BodyId id) const {
   return s_->body(id).xf.p;
@@ -392,12 +335,23 @@ BodyType World::type(BodyId id) const {
 std::uint64_t World::userData(BodyId id) const {
   return s_->body(id).userData;
 }
+float World::gravityScale(BodyId id) const {
+  return s_->body(id).gravityScale;
+}
+bool World::isBullet(BodyId id) const {
+  return s_->body(id).bullet;
+}
+bool World::isEnabled(BodyId id) const {
+  return s_->body(id).enabled;
+}
+
+// ------------------------------------------------------------------------------ setters
 
 void World::setLinearVelocity(BodyId id, Vec2 v) {
   WorldState& s = *s_;
   WorldState::Body& b = s.body(id);
-  s.wakeBody(b);
   requireFinite("setLinearVelocity", "velocity", v);
+  s.wakeBody(b);
   if (b.slot < 0) return;
   const auto i = 3 * static_cast<std::size_t>(b.slot);
   s.v_[i] = v.x;
@@ -407,17 +361,17 @@ void World::setLinearVelocity(BodyId id, Vec2 v) {
 void World::setAngularVelocity(BodyId id, float w) {
   WorldState& s = *s_;
   WorldState::Body& b = s.body(id);
-  s.wakeBody(b);
   requireFinite("setAngularVelocity", "angular velocity", w);
+  s.wakeBody(b);
   if (b.slot < 0 || b.fixedRotation) return;
   s.v_[3 * static_cast<std::size_t>(b.slot) + 2] = w;
 }
 void World::setTransform(BodyId id, Vec2 position, float angle) {
   WorldState& s = *s_;
   WorldState::Body& b = s.body(id);
-  s.wakeBody(b);
   requireFinite("setTransform", "position", position);
   requireFinite("setTransform", "angle", angle);
+  s.wakeBody(b);
   b.xf = {position, Rot::fromAngle(angle)};
   b.angle = angle;
   if (b.slot >= 0) {
@@ -431,35 +385,127 @@ void World::setTransform(BodyId id, Vec2 position, float angle) {
   if (b.slot >= 0) s.pendingRefit_.push_back(id.index);
 }
 
+void World::setTargetTransform(BodyId id, Vec2 position, float angle, float dt) {
+  WorldState& s = *s_;
+  WorldState::Body& b = s.body(id);
+  requireFinite("setTargetTransform", "position", position);
+  requireFinite("setTargetTransform", "angle", angle);
+  if (!(dt > 0.0f) || !std::isfinite(dt))
+    failDefinition("setTargetTransform", "dt", "is " + formatNumber(dt) + " (must be > 0)");
+  if (b.type != BodyType::kinematicBody)
+    failDefinition("setTargetTransform", "body", "is not kinematic");
+  // The centre's motion in double (the body may be far from the origin), the angle's too.
+  const auto i = 3 * static_cast<std::size_t>(b.slot);
+  const Vec2 centre = apply(Transform{position, Rot::fromAngle(angle)}, b.localCenter);
+  const double inv = 1.0 / static_cast<double>(dt);
+  const Vec2 v{static_cast<float>((centre.x - s.q_[i]) * inv),
+               static_cast<float>((centre.y - s.q_[i + 1]) * inv)};
+  const auto w = static_cast<float>((static_cast<double>(angle) - s.q_[i + 2]) * inv);
+  s.wakeBody(b);
+  s.v_[i] = v.x;
+  s.v_[i + 1] = v.y;
+  s.v_[i + 2] = b.fixedRotation ? 0.0f : w;
+  s.pendingRefit_.push_back(id.index);
+}
+
+void World::setType(BodyId id, BodyType type) {
+  WorldState& s = *s_;
+  WorldState::Body& b = s.body(id);
+  if (type != BodyType::staticBody && type != BodyType::kinematicBody &&
+      type != BodyType::dynamicBody)
+    failDefinition("setType", "type", "is not static, kinematic or dynamic");
+  if (b.type == type) return;
+  if (type == BodyType::dynamicBody)
+    for (std::int32_t shape : b.shapes)
+      if (!s.shapes_[static_cast<std::size_t>(shape)].shape.isSolid())
+        failDefinition("setType", "type",
+                       "is dynamic, but the body carries a shape without area (a segment or "
+                       "chain link)");
+  // Pairs depend on the type (static bodies pair with no static body, and live in their own
+  // tree): its proxies are taken out and put back, and pairs found anew.
+  s.wakeBody(b);
+  const bool enabled = b.enabled;
+  if (enabled) s.removeProxies(b);
+  const Vec2 v = s.velocityOf(b);
+  const float w = b.slot < 0 ? 0.0f : s.v_[3 * static_cast<std::size_t>(b.slot) + 2];
+  if (type == BodyType::staticBody && b.slot >= 0) {
+    s.releaseSlot(b);
+  } else if (b.slot < 0 && type != BodyType::staticBody) {
+    s.takeSlot(id.index, {}, 0.0f);
+    if (!enabled) {
+      s.swapSlots(b.slot, s.awakeCount_ - 1);
+      --s.awakeCount_;
+    }
+  }
+  b.type = type;
+  s.updateMass(b);
+  if (b.slot >= 0 && type == BodyType::dynamicBody) {
+    // A kinematic body turning dynamic keeps its motion.
+    const auto i = 3 * static_cast<std::size_t>(b.slot);
+    s.v_[i] = v.x;
+    s.v_[i + 1] = v.y;
+    s.v_[i + 2] = b.fixedRotation ? 0.0f : w;
+  }
+  b.force = {};
+  b.torque = 0.0f;
+  if (enabled) s.addProxies(b);
+  if (b.slot >= 0) s.pendingRefit_.push_back(id.index);
+}
+
+void World::setGravityScale(BodyId id, float scale) {
+  WorldState::Body& b = s_->body(id);
+  requireFinite("setGravityScale", "scale", scale);
+  s_->wakeBody(b);
+  b.gravityScale = scale;
+}
+void World::setBullet(BodyId id, bool bullet) {
+  s_->body(id).bullet = bullet;
+}
+void World::setUserData(BodyId id, std::uint64_t userData) {
+  s_->body(id).userData = userData;
+}
+void World::setEnabled(BodyId id, bool enabled) {
+  WorldState::Body& b = s_->body(id);
+  if (enabled) {
+    s_->enable(b);
+  } else {
+    s_->disable(b);
+  }
+}
+
+// ------------------------------------------------------------------------ forces, impulses
+
 void World::applyForce(BodyId id, Vec2 force, Vec2 worldPoint) {
   WorldState& s = *s_;
   WorldState::Body& b = s.body(id);
   requireFinite("applyForce", "force", force);
   requireFinite("applyForce", "point", worldPoint);
+  if (b.type != BodyType::dynamicBody || !b.enabled) return;
   s.wakeBody(b);
-  if (b.type != BodyType::dynamicBody) return;
   b.force += force;
   b.torque += cross(worldPoint - s.center(b), force);
 }
 void World::applyForceToCenter(BodyId id, Vec2 force) {
   WorldState::Body& b = s_->body(id);
   requireFinite("applyForceToCenter", "force", force);
+  if (b.type != BodyType::dynamicBody || !b.enabled) return;
   s_->wakeBody(b);
-  if (b.type == BodyType::dynamicBody) b.force += force;
+  b.force += force;
 }
 void World::applyTorque(BodyId id, float torque) {
   WorldState::Body& b = s_->body(id);
   requireFinite("applyTorque", "torque", torque);
+  if (b.type != BodyType::dynamicBody || !b.enabled) return;
   s_->wakeBody(b);
-  if (b.type == BodyType::dynamicBody) b.torque += torque;
+  b.torque += torque;
 }
 void World::applyLinearImpulse(BodyId id, Vec2 impulse, Vec2 worldPoint) {
   WorldState& s = *s_;
   WorldState::Body& b = s.body(id);
   requireFinite("applyLinearImpulse", "impulse", impulse);
   requireFinite("applyLinearImpulse", "point", worldPoint);
+  if (b.type != BodyType::dynamicBody || !b.enabled) return;
   s.wakeBody(b);
-  if (b.type != BodyType::dynamicBody) return;
   const auto i = 3 * static_cast<std::size_t>(b.slot);
   s.v_[i] += b.invMass * impulse.x;
   s.v_[i + 1] += b.invMass * impulse.y;
@@ -468,64 +514,9 @@ void World::applyLinearImpulse(BodyId id, Vec2 impulse, Vec2 worldPoint) {
 void World::applyAngularImpulse(BodyId id, float impulse) {
   WorldState::Body& b = s_->body(id);
   requireFinite("applyAngularImpulse", "impulse", impulse);
+  if (b.type != BodyType::dynamicBody || !b.enabled) return;
   s_->wakeBody(b);
-  if (b.type == BodyType::dynamicBody)
-    s_->v_[3 * static_cast<std::size_t>(b.slot) + 2] += b.invInertia * impulse;
-}
-
-std::vector<BodyId> World::bodies() const {
-  std::vector<BodyId> out;
-  for (std::size_t i = 0; i < s_->bodies_.size(); ++i)
-    if (s_->bodies_[i].alive) out.push_back(s_->bodyId(static_cast<std::int32_t>(i)));
-  return out;
-}
-
-std::vector<ShapeId> World::shapesOf(BodyId id) const {
-  std::vector<ShapeId> out;
-  for (std::int32_t shape : s_->body(id).shapes)
-    out.push_back(s_->shapeId(shape));
-  return out;
-}
-
-const Shape& World::shape(ShapeId id) const {
-  return s_->shapeRecord(id).shape;
-}
-
-bool World::isSensor(ShapeId id) const {
-  return s_->shapeRecord(id).isSensor;
-}
-
-void WorldState::refitBody(Body& b, Vec2 displacement) {
-  if (b.round && b.slot >= 0) {
-    // Circles about the centre of mass: their box is the centre (kept in double) plus and minus
-    // the radius, with no rotation and no dispatch on the shape type (computeAABB was 6% of a
-    // 5000-circle arena step).
-    const auto i = 3 * static_cast<std::size_t>(b.slot);
-    const Vec2 c{static_cast<float>(q_[i]), static_cast<float>(q_[i + 1])};
-    for (std::int32_t s : b.shapes) {
-      const ShapeRecord& r = shapes_[static_cast<std::size_t>(s)];
-      const float radius = r.shape.circle.radius;
-      broadphase_.moveProxy(r.proxy, {{c.x - radius, c.y - radius}, {c.x + radius, c.y + radius}},
-                            displacement);
-    }
-    return;
-  }
-  for (std::int32_t s : b.shapes) {
-    const ShapeRecord& r = shapes_[static_cast<std::size_t>(s)];
-    broadphase_.moveProxy(r.proxy, computeAABB(r.shape, b.xf), displacement);
-  }
-}
-
-const WorldState::ShapeRecord& WorldState::shapeRecord(ShapeId id) const {
-  if (id.index < 0 || static_cast<std::size_t>(id.index) >= shapes_.size() ||
-      !shapes_[static_cast<std::size_t>(id.index)].alive ||
-      shapes_[static_cast<std::size_t>(id.index)].generation != id.generation)
-    throw std::invalid_argument("world: shape " + std::to_string(id.index) + " does not exist");
-  return shapes_[static_cast<std::size_t>(id.index)];
-}
-
-BodyId World::bodyOf(ShapeId shape) const {
-  return s_->bodyId(s_->shapeRecord(shape).body);
+  s_->v_[3 * static_cast<std::size_t>(b.slot) + 2] += b.invInertia * impulse;
 }
 
 }  // namespace rc

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace rc {
 namespace {
@@ -63,6 +64,15 @@ ProxyId ProxyStore::allocate(const ProxyDef& def) {
   moveBuffer_.push_back(id);
   ++count_;
   return id;
+}
+
+void ProxyStore::setFilter(ProxyId id, ProxyFilter filter) {
+  ProxyData& p = proxies_[checked(id)];
+  p.filter = filter;
+  if (!p.moved) {
+    p.moved = true;
+    moveBuffer_.push_back(id);
+  }
 }
 
 void ProxyStore::release(ProxyId id) {
@@ -360,6 +370,142 @@ void Quadtree::validate() const {
   for (std::size_t i = 0; i < proxies_.size(); ++i)
     if (proxies_[i].moved && (!proxies_[i].alive || !buffered[i]))
       fail("proxy " + std::to_string(i) + " is flagged as moved but not buffered");
+}
+
+// ------------------------------------------------------------------------------- snapshots
+
+void Quadtree::save(ByteWriter& out) const {
+  out.count(proxies_.size());
+  for (std::size_t i = 0; i < proxies_.size(); ++i) {
+    const ProxyData& p = proxies_[i];
+    const ProxyLinks& k = links_[i];
+    for (float f : {p.fat.lower.x, p.fat.lower.y, p.fat.upper.x, p.fat.upper.y})
+      out.f32(f);
+    out.i32(p.next);
+    out.u32(p.filter.category);
+    out.u32(p.filter.mask);
+    out.u8(static_cast<std::uint8_t>(p.isStatic | (p.alive << 1) | (p.moved << 2)));
+    out.i32(k.prev);
+    out.i32(k.level);
+    out.i32(k.cell);
+    out.u64(k.userData);
+  }
+  out.count(free_.size());
+  for (ProxyId id : free_)
+    out.i32(id);
+  out.count(moveBuffer_.size());
+  for (ProxyId id : moveBuffer_)
+    out.i32(id);
+  out.i32(bruteBelow_);
+  // Each level's reach (it remembers what was placed there); heads, populations and the
+  // outside lists follow from the links.
+  for (const Tree* tree : {&static_, &moving_})
+    for (const Level& lv : tree->levels)
+      out.f32(lv.reach);
+}
+
+// Every proxy gone, every cell empty: only the cells that hold something are visited (the
+// finest levels have a million).
+void Quadtree::clearAll() {
+  for (std::size_t i = 0; i < proxies_.size(); ++i) {
+    const ProxyLinks& k = links_[i];
+    if (!proxies_[i].alive || k.level < 0 || k.level > maxDepth_) continue;
+    Level& lv = treeOf(proxies_[i]).levels[static_cast<std::size_t>(k.level)];
+    if (k.cell >= 0 && k.cell < lv.side * lv.side)
+      lv.heads[static_cast<std::size_t>(k.cell)] = kNullProxy;
+  }
+  proxies_.clear();
+  links_.clear();
+  free_.clear();
+  moveBuffer_.clear();
+  count_ = 0;
+  for (Tree* tree : {&static_, &moving_}) {
+    tree->outside = kNullProxy;
+    tree->outsideCount = 0;
+    for (Level& lv : tree->levels) {
+      lv.population = 0;
+      lv.reach = 0.0f;
+    }
+  }
+}
+
+void Quadtree::load(ByteReader& in) {
+  clearAll();
+  try {
+    const std::size_t n = in.count(41);
+    proxies_.resize(n);
+    links_.resize(n);
+    auto id = [&](ProxyId v, bool nullable) {
+      if ((nullable && v == kNullProxy) || (v >= 0 && static_cast<std::size_t>(v) < n)) return v;
+      in.fail("broadphase: proxy id " + std::to_string(v) + " out of range");
+    };
+    for (std::size_t i = 0; i < n; ++i) {
+      ProxyData& p = proxies_[i];
+      ProxyLinks& k = links_[i];
+      p.fat.lower.x = in.f32();
+      p.fat.lower.y = in.f32();
+      p.fat.upper.x = in.f32();
+      p.fat.upper.y = in.f32();
+      p.next = id(in.i32(), true);
+      p.filter.category = in.u32();
+      p.filter.mask = in.u32();
+      const std::uint8_t flags = in.u8();
+      if (flags > 7) in.fail("broadphase: bad proxy flags");
+      p.isStatic = (flags & 1) != 0;
+      p.alive = (flags & 2) != 0;
+      p.moved = (flags & 4) != 0;
+      k.prev = id(in.i32(), true);
+      k.level = in.i32();
+      k.cell = in.i32();
+      k.userData = in.u64();
+      if (!p.alive) continue;
+      if (!p.fat.isValid()) in.fail("broadphase: a fat AABB is not finite");
+      ++count_;
+      Tree& tree = treeOf(p);
+      if (k.level == -1) {
+        ++tree.outsideCount;
+        if (k.prev == kNullProxy) tree.outside = static_cast<ProxyId>(i);
+        continue;
+      }
+      if (k.level < 0 || k.level > maxDepth_) in.fail("broadphase: level out of range");
+      Level& lv = tree.levels[static_cast<std::size_t>(k.level)];
+      if (k.cell < 0 || k.cell >= lv.side * lv.side) in.fail("broadphase: cell out of range");
+      ++lv.population;
+      if (k.prev == kNullProxy) {
+        ProxyId& head = lv.heads[static_cast<std::size_t>(k.cell)];
+        if (head != kNullProxy) in.fail("broadphase: two heads of one cell");
+        head = static_cast<ProxyId>(i);
+      }
+    }
+    const std::size_t freeCount = in.count(4);
+    for (std::size_t j = 0; j < freeCount; ++j) {
+      const ProxyId f = id(in.i32(), false);
+      if (proxies_[static_cast<std::size_t>(f)].alive) in.fail("broadphase: a free id is alive");
+      free_.push_back(f);
+    }
+    if (static_cast<std::size_t>(count_) + free_.size() != n)
+      in.fail("broadphase: free ids do not match the dead proxies");
+    std::vector<char> seen(n, 0);
+    for (ProxyId f : free_)
+      if (std::exchange(seen[static_cast<std::size_t>(f)], 1))
+        in.fail("broadphase: a free id twice");
+    const std::size_t moved = in.count(4);
+    for (std::size_t j = 0; j < moved; ++j)
+      moveBuffer_.push_back(id(in.i32(), false));
+    bruteBelow_ = in.i32();
+    for (Tree* tree : {&static_, &moving_})
+      for (Level& lv : tree->levels) {
+        lv.reach = in.f32();
+        if (!(lv.reach >= 0.0f && lv.reach <= 0.5f * lv.cellSize))
+          in.fail("broadphase: a level's reach is out of range");
+      }
+    validate();
+  } catch (const std::logic_error& e) {
+    // A reader's complaint (invalid_argument) or validate()'s: the tree is left empty.
+    clearAll();
+    if (dynamic_cast<const std::invalid_argument*>(&e) != nullptr) throw;
+    throw std::invalid_argument(std::string("snapshot: broadphase: ") + e.what());
+  }
 }
 
 // ---------------------------------------------------------------------------------- BruteForce

@@ -45,6 +45,7 @@
 #include <string>
 #include <vector>
 
+#include "physics/bytes.h"
 #include "physics/math.h"
 #include "physics/raycast.h"
 
@@ -149,6 +150,9 @@ class ProxyStore {
   ProxyFilter filter(ProxyId id) const { return proxies_[checked(id)].filter; }
   bool isStatic(ProxyId id) const { return proxies_[checked(id)].isStatic; }
   int proxyCount() const { return count_; }
+  // A new filter: the proxy takes part in the next pair update as if it had moved, so pairs the
+  // old filter refused are found (the caller ends those the new one refuses).
+  void setFilter(ProxyId id, ProxyFilter filter);
 
  protected:
   explicit ProxyStore(const char* name) : name_(name) {}
@@ -231,6 +235,13 @@ class Quadtree : public ProxyStore {
   // naming the first broken one.
   void validate() const;
 
+  // The proxies, their cells and the move buffer as bytes, and back into a tree made with the
+  // same bounds and depth (World::snapshot): the restored tree reports the same pairs in the
+  // same order. load() checks every id and invariant and throws std::invalid_argument for
+  // bytes that are not such a tree, leaving this one empty.
+  void save(ByteWriter& out) const;
+  void load(ByteReader& in);
+
   int maxDepth() const { return maxDepth_; }
 
   // The cells that hold at least one proxy (their own bounds, not the loose ones), with their
@@ -269,6 +280,7 @@ class Quadtree : public ProxyStore {
 
   void place(ProxyId id);
   void unlink(ProxyId id);
+  void clearAll();
   void link(ProxyId id, Tree& tree, int level, int cell);
   ProxyId& headOf(Tree& tree, int level, int cell);
   Tree& treeOf(const ProxyData& p) { return p.isStatic ? static_ : moving_; }

@@ -9,18 +9,6 @@
 
 namespace rc {
 
-namespace {
-
-// Friction and restitution of a pair, as Box2D mixes them: geometric mean, maximum.
-float mixFriction(float a, float b) {
-  return std::sqrt(a * b);
-}
-float mixRestitution(float a, float b) {
-  return std::max(a, b);
-}
-
-}  // namespace
-
 void WorldState::updatePairs() {
   broadphase_.updatePairs(newPairs_);
   for (const ProxyPair& pair : newPairs_) {
@@ -57,9 +45,10 @@ void WorldState::updatePairs() {
   }
 }
 
-void WorldState::destroyContact(std::size_t index) {
-  if (contacts_[index].touching)
-    events_.end.push_back({shapeId(contacts_[index].shapeA), shapeId(contacts_[index].shapeB)});
+void WorldState::destroyContact(std::size_t index, bool destroyed) {
+  const Contact& c = contacts_[index];
+  if (c.touching && wantsContactEvents(c))
+    contactSink().end.push_back({ref(c.shapeA), ref(c.shapeB), destroyed});
   contactIndex_.erase(pairKey(contacts_[index].shapeA, contacts_[index].shapeB));
   if (index + 1 != contacts_.size()) {
     contacts_[index] = contacts_.back();
@@ -247,12 +236,14 @@ void WorldState::narrowphase(float dt) {
         return Vec2{v_[k], v_[k + 1]} + cross(v_[k + 2], mp.point - center(body));
       };
       const float approach = -dot(pointVelocity(b) - pointVelocity(a), c.manifold.normal);
-      const ShapeId idA = shapeId(c.shapeA), idB = shapeId(c.shapeB);
-      events_.begin.push_back({idA, idB, mp.point, c.manifold.normal, approach});
-      if (approach > def_.hitEventThreshold)
-        events_.hit.push_back({idA, idB, mp.point, c.manifold.normal, approach});
-    } else if (!c.touching && was) {
-      events_.end.push_back({shapeId(c.shapeA), shapeId(c.shapeB)});
+      if (wantsContactEvents(c))
+        events_.begin.push_back(
+            {ref(c.shapeA), ref(c.shapeB), mp.point, c.manifold.normal, approach});
+      if (approach > def_.hitEventThreshold && (ra.hitEvents || rb.hitEvents))
+        events_.hit.push_back(
+            {ref(c.shapeA), ref(c.shapeB), mp.point, c.manifold.normal, approach});
+    } else if (!c.touching && was && wantsContactEvents(c)) {
+      events_.end.push_back({ref(c.shapeA), ref(c.shapeB), false});
     }
   }
 }

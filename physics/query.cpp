@@ -1,4 +1,5 @@
-// Queries: ray and shape casts, overlaps, each with a filter.
+// Queries: ray and shape casts, overlaps; each takes a filter (bitmask and callback) and names
+// the shape, its body and their user data in what it finds.
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -16,103 +17,175 @@ void checkCast(const char* what, Vec2 origin, Vec2 translation) {
   requireFinite(what, "translation", translation);
 }
 
+void checkPlacedShape(const char* what, const Shape& shape, const Transform& xf) {
+  try {
+    validate(shape);
+  } catch (const InvalidShape& e) {
+    throw InvalidDefinition(std::string(what) + ": " + e.what());
+  }
+  requireFinite(what, "position", xf.p);
+  requireFinite(what, "rotation", Vec2{xf.q.c, xf.q.s});
+}
+
 }  // namespace
+
+bool WorldState::accepts(const QueryFilter& filter, std::int32_t shape) const {
+  return !filter.accept || filter.accept(ref(shape));
+}
 
 template <class Exact>
 std::optional<WorldHit> WorldState::closest(const RayCastInput& in, float radius,
-                                            ProxyFilter filter, Exact&& exact) const {
-  const ProxyHit h = castClosest(broadphase_, in, radius, filter, exact);
+                                            const QueryFilter& filter, Exact&& exact) const {
+  const ProxyHit h =
+      castClosest(broadphase_, in, radius, filter.bits, [&](ProxyId id, const RayCastInput& ray) {
+        const auto shape = static_cast<std::int32_t>(broadphase_.userData(id));
+        const ShapeRecord& r = shapes_[static_cast<std::size_t>(shape)];
+        if (r.isSensor || !accepts(filter, shape)) return CastOutput{};
+        return exact(r, ray);
+      });
   if (!h.out.hit) return std::nullopt;
-  const auto index = static_cast<std::int32_t>(broadphase_.userData(h.id));
-  return WorldHit{shapeId(index), bodyId(shapes_[static_cast<std::size_t>(index)].body),
-                  h.out.point, h.out.normal, h.out.fraction};
+  return hitOf(h);
 }
 
-CastOutput WorldState::rayAgainst(ProxyId proxy, const RayCastInput& ray) const {
-  const ShapeRecord& r = shapes_[broadphase_.userData(proxy)];
-  if (r.isSensor) return {};
-  return rayCast(r.shape, bodies_[static_cast<std::size_t>(r.body)].xf, ray);
+WorldHit WorldState::hitOf(const ProxyHit& h) const {
+  WorldHit hit;
+  static_cast<ShapeRef&>(hit) = ref(static_cast<std::int32_t>(broadphase_.userData(h.id)));
+  hit.point = h.out.point;
+  hit.normal = h.out.normal;
+  hit.fraction = h.out.fraction;
+  return hit;
 }
 
-std::optional<WorldHit> World::castRay(Vec2 origin, Vec2 translation, ProxyFilter filter) const {
+template <class Exact>
+std::vector<ShapeRef> WorldState::overlapping(const AABB& box, const QueryFilter& filter,
+                                              Exact&& exact) const {
+  std::vector<std::int32_t> found;
+  broadphase_.queryAABB(box, filter.bits, [&](ProxyId id) {
+    const auto shape = static_cast<std::int32_t>(broadphase_.userData(id));
+    const ShapeRecord& r = shapes_[static_cast<std::size_t>(shape)];
+    if (exact(r) && accepts(filter, shape)) found.push_back(shape);
+    return true;
+  });
+  std::sort(found.begin(), found.end());
+  std::vector<ShapeRef> out;
+  out.reserve(found.size());
+  for (std::int32_t shape : found)
+    out.push_back(ref(shape));
+  return out;
+}
+
+const Transform& WorldState::transformOf(const ShapeRecord& r) const {
+  return bodies_[static_cast<std::size_t>(r.body)].xf;
+}
+
+// ----------------------------------------------------------------------------------- casts
+
+std::optional<WorldHit> World::castRay(Vec2 origin, Vec2 translation,
+                                       const QueryFilter& filter) const {
   checkCast("castRay", origin, translation);
-  const RayCastInput in{origin, translation, 1.0f};
   const WorldState& s = *s_;
-  return s.closest(in, 0.0f, filter,
-                   [&s](ProxyId id, const RayCastInput& ray) { return s.rayAgainst(id, ray); });
+  return s.closest({origin, translation, 1.0f}, 0.0f, filter,
+                   [&s](const WorldState::ShapeRecord& r, const RayCastInput& ray) {
+                     return rayCast(r.shape, s.transformOf(r), ray);
+                   });
 }
 
-std::vector<WorldHit> World::castRayAll(Vec2 origin, Vec2 translation, ProxyFilter filter) const {
+std::vector<WorldHit> World::castRayAll(Vec2 origin, Vec2 translation,
+                                        const QueryFilter& filter) const {
   checkCast("castRayAll", origin, translation);
-  const RayCastInput in{origin, translation, 1.0f};
   const WorldState& s = *s_;
   std::vector<WorldHit> out;
   for (const ProxyHit& h :
-       castAll(s.broadphase_, in, 0.0f, filter,
-               [&s](ProxyId id, const RayCastInput&ray) { return s.rayAgainst(id, ray); })) {
-    const auto index = static_cast<std::int32_t>(s.broadphase_.userData(h.id));
-    out.push_back({s.shapeId(index), s.bodyId(s.shapes_[static_cast<std::size_t>(index)].body),
-                   h.out.point, h.out.normal, h.out.fraction});
-  }
+       castAll(s.broadphase_, {origin, translation, 1.0f}, 0.0f, filter.bits,
+               [&s, &filter](ProxyId id, const RayCastInput&ray) {
+                 const auto shape = static_cast<std::int32_t>(s.broadphase_.userData(id));
+                 const WorldState::ShapeRecord& r = s.shapes_[static_cast<std::size_t>(shape)];
+                 if (r.isSensor || !s.accepts(filter, shape)) return CastOutput{};
+                 return rayCast(r.shape, s.transformOf(r), ray);
+               }))
+    out.push_back(s.hitOf(h));
   return out;
 }
 
 std::optional<WorldHit> World::castCircle(Vec2 center, float radius, Vec2 translation,
-                                          ProxyFilter filter) const {
+                                          const QueryFilter& filter) const {
   checkCast("castCircle", center, translation);
   if (!(radius > 0.0f) || !std::isfinite(radius))
     failDefinition("castCircle", "radius", "is " + formatNumber(radius) + " (must be > 0)");
-  const RayCastInput in{center, translation, 1.0f};
   const ShapeProxy disc = makeProxy(&center, 1, radius);
   const WorldState& s = *s_;
-  return s.closest(in, radius, filter, [&](ProxyId id, const RayCastInput&) {
-    const WorldState::ShapeRecord& r = s.shapes_[s.broadphase_.userData(id)];
-    if (r.isSensor) return CastOutput{};
-    return shapeCast(disc, Transform{}, translation, makeProxy(r.shape),
-                     s.bodies_[static_cast<std::size_t>(r.body)].xf);
-  });
+  return s.closest({center, translation, 1.0f}, radius, filter,
+                   [&](const WorldState::ShapeRecord& r, const RayCastInput&) {
+                     return shapeCast(disc, Transform{}, translation, makeProxy(r.shape),
+                                      s.transformOf(r));
+                   });
 }
 
-std::vector<ShapeId> World::overlapAABB(const AABB& box, ProxyFilter filter) const {
+std::optional<WorldHit> World::castShape(const Shape& shape, const Transform& start,
+                                         Vec2 translation, const QueryFilter& filter) const {
+  checkPlacedShape("castShape", shape, start);
+  requireFinite("castShape", "translation", translation);
+  // The broadphase sweeps the shape's bounding circle; the exact test, the shape.
+  const BoundingCircle bound = computeBoundingCircle(shape);
+  const ShapeProxy mover = makeProxy(shape);
   const WorldState& s = *s_;
-  std::vector<ShapeId> out;
-  for (ProxyId id : s.broadphase_.queryAABB(box, filter)) {
-    const auto index = static_cast<std::int32_t>(s.broadphase_.userData(id));
-    const WorldState::ShapeRecord& r = s.shapes_[static_cast<std::size_t>(index)];
-    if (overlaps(computeAABB(r.shape, s.bodies_[static_cast<std::size_t>(r.body)].xf), box))
-      out.push_back(s.shapeId(index));
-  }
-  std::sort(out.begin(), out.end(), [](ShapeId a, ShapeId b) { return a.index < b.index; });
-  return out;
+  return s.closest({apply(start, bound.center), translation, 1.0f}, bound.radius, filter,
+                   [&](const WorldState::ShapeRecord& r, const RayCastInput&) {
+                     return shapeCast(mover, start, translation, makeProxy(r.shape),
+                                      s.transformOf(r));
+                   });
 }
 
-std::optional<WorldHit> World::castRay(Vec2 origin, Vec2 translation, ProxyFilter filter,
+std::optional<WorldHit> World::castRay(Vec2 origin, Vec2 translation, const QueryFilter& filter,
                                        Wake wake) {
   std::optional<WorldHit> hit = std::as_const(*this).castRay(origin, translation, filter);
   if (hit && wake == Wake::yes) s_->wakeBody(s_->body(hit->body));
   return hit;
 }
 
-std::vector<ShapeId> World::overlapAABB(const AABB& box, ProxyFilter filter, Wake wake) {
-  std::vector<ShapeId> found = std::as_const(*this).overlapAABB(box, filter);
+// -------------------------------------------------------------------------------- overlaps
+
+std::vector<ShapeRef> World::overlapAABB(const AABB& box, const QueryFilter& filter) const {
+  requireFinite("overlapAABB", "lower", box.lower);
+  requireFinite("overlapAABB", "upper", box.upper);
+  const WorldState& s = *s_;
+  return s.overlapping(box, filter, [&](const WorldState::ShapeRecord& r) {
+    return overlaps(computeAABB(r.shape, s.transformOf(r)), box);
+  });
+}
+
+std::vector<ShapeRef> World::overlapPoint(Vec2 point, const QueryFilter& filter) const {
+  requireFinite("overlapPoint", "point", point);
+  const WorldState& s = *s_;
+  return s.overlapping({point, point}, filter, [&](const WorldState::ShapeRecord& r) {
+    return containsPoint(r.shape, s.transformOf(r), point);
+  });
+}
+
+std::vector<ShapeRef> World::overlapShape(const Shape& shape, const Transform& where,
+                                          const QueryFilter& filter) const {
+  checkPlacedShape("overlapShape", shape, where);
+  const WorldState& s = *s_;
+  return s.overlapping(computeAABB(shape, where), filter, [&](const WorldState::ShapeRecord& r) {
+    return testOverlap(shape, where, r.shape, s.transformOf(r));
+  });
+}
+
+std::vector<ShapeRef> World::overlapAABB(const AABB& box, const QueryFilter& filter, Wake wake) {
+  std::vector<ShapeRef> found = std::as_const(*this).overlapAABB(box, filter);
   if (wake == Wake::yes)
-    for (ShapeId shape : found)
-      s_->wakeBody(s_->body(bodyOf(shape)));
+    for (const ShapeRef& r : found)
+      s_->wakeBody(s_->body(r.body));
   return found;
 }
 
-std::vector<ShapeId> World::overlapPoint(Vec2 point, ProxyFilter filter) const {
-  requireFinite("overlapPoint", "point", point);
-  const WorldState& s = *s_;
-  std::vector<ShapeId> out;
-  for (ProxyId id : s.broadphase_.queryPoint(point, filter)) {
-    const auto index = static_cast<std::int32_t>(s.broadphase_.userData(id));
-    const WorldState::ShapeRecord& r = s.shapes_[static_cast<std::size_t>(index)];
-    if (containsPoint(r.shape, s.bodies_[static_cast<std::size_t>(r.body)].xf, point))
-      out.push_back(s.shapeId(index));
-  }
-  std::sort(out.begin(), out.end(), [](ShapeId a, ShapeId b) { return a.index < b.index; });
-  return out;
+std::vector<ShapeRef> World::overlapShape(const Shape& shape, const Transform& where,
+                                          const QueryFilter& filter, Wake wake) {
+  std::vector<ShapeRef> found = std::as_const(*this).overlapShape(shape, where, filter);
+  if (wake == Wake::yes)
+    for (const ShapeRef& r : found)
+      s_->wakeBody(s_->body(r.body));
+  return found;
 }
 
 }  // namespace rc

@@ -5,9 +5,10 @@
 
 namespace rc {
 
-void WorldState::destroySensorPair(std::size_t index) {
+void WorldState::destroySensorPair(std::size_t index, bool destroyed) {
   SensorPair& sp = sensorPairs_[index];
-  if (sp.overlapping) sensorEvents_.end.push_back({shapeId(sp.sensor), shapeId(sp.visitor)});
+  if (sp.overlapping && wantsSensorEvents(sp))
+    sensorSink().end.push_back({ref(sp.sensor), ref(sp.visitor), destroyed});
   sensorIndex_.erase(pairKey(sp.sensor, sp.visitor));
   if (index + 1 != sensorPairs_.size()) {
     sensorPairs_[index] = sensorPairs_.back();
@@ -40,9 +41,12 @@ void WorldState::updateSensors() {
         passed = cast.hit;
       }
     }
-    const ShapeId sid = shapeId(sp.sensor), vid = shapeId(sp.visitor);
-    if ((now && !sp.overlapping) || passed) sensorEvents_.begin.push_back({sid, vid});
-    if ((!now && sp.overlapping) || passed) sensorEvents_.end.push_back({sid, vid});
+    if (wantsSensorEvents(sp)) {
+      if ((now && !sp.overlapping) || passed)
+        sensorEvents_.begin.push_back({ref(sp.sensor), ref(sp.visitor), false});
+      if ((!now && sp.overlapping) || passed)
+        sensorEvents_.end.push_back({ref(sp.sensor), ref(sp.visitor), false});
+    }
     sp.overlapping = now;
     if (!now && !overlaps(broadphase_.fatAABB(sensor.proxy), broadphase_.fatAABB(visitor.proxy)))
       destroySensorPair(k);

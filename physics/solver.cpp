@@ -1,6 +1,7 @@
 // The solve: contact constraints prepared, then substeps of free motion, warm start, soft
 // contact solve, position update and relax; restitution; impulses stored for the next step.
 #include <algorithm>
+#include <cmath>
 
 #include "physics/world.h"
 #include "physics/world_state.h"
@@ -219,7 +220,32 @@ void WorldState::integrateFreeMotion(int substep, float h) {
     }
     if (b.angularDamping > 0.0f) v_[3 * s + 2] *= 1.0f / (1.0f + h * b.angularDamping);
   }
+  quarantineUnusable(QuarantineCause::motion);
   freeV_.assign(v.begin(), v.end());
+}
+
+// A body whose velocity is not finite or beyond WorldDef::quarantineSpeed (its position then
+// follows from it) is put back where it began the step, at rest, before the contacts can hand the
+// value on; it is disabled once the step is done. One branch-free pass over the velocities
+// finds whether there is any.
+void WorldState::quarantineUnusable(QuarantineCause cause) {
+  const std::size_t n = 3 * static_cast<std::size_t>(awakeCount_);
+  const float limit = def_.quarantineSpeed;
+  bool any = false;
+  for (std::size_t i = 0; i < n; ++i)
+    any |= !(std::fabs(v_[i]) <= limit);
+  if (!any) return;
+  for (std::size_t s = 0; s < static_cast<std::size_t>(awakeCount_); ++s) {
+    bool bad = false;
+    for (std::size_t k = 0; k < 3; ++k)
+      bad = bad || !(std::fabs(v_[3 * s + k]) <= limit) || !std::isfinite(q_[3 * s + k]);
+    if (!bad) continue;
+    q_[3 * s] = startCenter_[2 * s];
+    q_[3 * s + 1] = startCenter_[2 * s + 1];
+    q_[3 * s + 2] = startAngle_[s];
+    v_[3 * s] = v_[3 * s + 1] = v_[3 * s + 2] = 0.0f;
+    quarantine_.emplace_back(slotBody_[s], cause);
+  }
 }
 
 // The carried impulses applied to the free velocities; restitution's approach speeds are read

@@ -56,6 +56,7 @@ World::World(const WorldDef& def) {
   requireNonNegative("world", "contactHertz", def.contactHertz);
   requireNonNegative("world", "contactDampingRatio", def.contactDampingRatio);
   requireNonNegative("world", "maxPushoutSpeed", def.maxPushoutSpeed);
+  requireNonNegative("world", "quarantineSpeed", def.quarantineSpeed);
   if (def.maxSolverLanes != 4 && def.maxSolverLanes != 8)
     failDefinition("world", "maxSolverLanes",
                    "is " + std::to_string(def.maxSolverLanes) + " (must be 4 or 8)");
@@ -74,11 +75,8 @@ void World::step(float dt) {
   Profile& profile = s.profile_;
   const auto start = Clock::now();
   auto t = start;
-  s.events_.begin.clear();
-  s.events_.end.clear();
-  s.events_.hit.clear();
-  s.sensorEvents_.begin.clear();
-  s.sensorEvents_.end.clear();
+  s.beginEvents();
+  s.stepping_ = true;
   // Bodies new or changed since the last step: proxies stretched along this step's motion.
   std::sort(s.pendingRefit_.begin(), s.pendingRefit_.end());
   s.pendingRefit_.erase(std::unique(s.pendingRefit_.begin(), s.pendingRefit_.end()),
@@ -99,6 +97,8 @@ void World::step(float dt) {
   profile.solve = millisecondsSince(t);
   t = Clock::now();
   if (s.def_.continuous) s.continuous();
+  // What the contacts made of the bodies: one pass, and nothing more unless one is unusable.
+  if (s.awakeCount_ > 0) s.quarantineUnusable(QuarantineCause::contact);
   profile.continuous = millisecondsSince(t);
   t = Clock::now();
   s.refit(dt);
@@ -109,8 +109,47 @@ void World::step(float dt) {
   t = Clock::now();
   s.updateSleep(dt);
   profile.sleep = millisecondsSince(t);
-  profile.total = millisecondsSince(start);
+  s.stepping_ = false;
   s.time_ += dt;
+  s.endStep();
+  profile.total = millisecondsSince(start);
+  if (s.staleFieldId_) {
+    const BodyId stale = *s.staleFieldId_;
+    s.staleFieldId_.reset();
+    throw std::invalid_argument("world: a force field named body " + std::to_string(stale.index) +
+                                " (generation " + std::to_string(stale.generation) +
+                                "), which does not exist; the step was completed without it");
+  }
+}
+
+// The published events start as what happened between the steps (ends made by destroying or
+// disabling), then take the step's own.
+void WorldState::beginEvents() {
+  events_.begin.clear();
+  events_.hit.clear();
+  events_.end.swap(pendingEvents_.end);
+  pendingEvents_.end.clear();
+  sensorEvents_.begin.clear();
+  sensorEvents_.end.swap(pendingSensorEvents_.end);
+  pendingSensorEvents_.end.clear();
+  quarantineEvents_.clear();
+}
+
+// What the step found to act on once it is whole: bodies to quarantine, sleeping bodies a force
+// field pushed.
+void WorldState::endStep() {
+  for (const auto& [index, cause] : quarantine_) {
+    Body& b = bodies_[static_cast<std::size_t>(index)];
+    if (!b.alive || !b.enabled) continue;  // named twice
+    quarantineEvents_.push_back({bodyId(index), b.userData, cause});
+    disable(b);
+  }
+  quarantine_.clear();
+  for (std::int32_t index : fieldWakes_) {
+    Body& b = bodies_[static_cast<std::size_t>(index)];
+    if (b.alive && b.enabled) wakeBody(b);
+  }
+  fieldWakes_.clear();
 }
 
 // Transforms, AABBs and proxies from the new positions, each fat AABB stretched along the
@@ -140,35 +179,6 @@ void WorldState::refit(float dt) {
 
 // ------------------------------------------------------------------------- the whole state
 
-std::uint64_t World::stateHash() const {
-  const WorldState& s = *s_;
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  auto mixBits = [&](std::uint64_t bits, int bytes) {
-    for (int k = 0; k < bytes; ++k) {
-      h ^= (bits >> (8 * k)) & 0xFFu;
-      h *= 0x100000001b3ull;
-    }
-  };
-  auto mix = [&](float f) { mixBits(std::bit_cast<std::uint32_t>(f), 4); };
-  for (std::size_t i = 0; i < s.bodies_.size(); ++i) {
-    const WorldState::Body& b = s.bodies_[i];
-    if (!b.alive) continue;
-    if (b.slot < 0) {
-      mix(b.xf.p.x);
-      mix(b.xf.p.y);
-      mix(b.angle);
-      continue;
-    }
-    // The state as the world keeps it: double centre and angle, float velocities.
-    const auto k = 3 * static_cast<std::size_t>(b.slot);
-    for (std::size_t j = 0; j < 3; ++j)
-      mixBits(std::bit_cast<std::uint64_t>(s.q_[k + j]), 8);
-    for (std::size_t j = 0; j < 3; ++j)
-      mix(s.v_[k + j]);
-  }
-  return h;
-}
-
 double World::energy() const {
   const WorldState& s = *s_;
   double e = 0;
@@ -187,9 +197,6 @@ double World::energy() const {
 int World::awakeBodyCount() const {
   return s_->awakeCount_;
 }
-int World::bodyCount() const {
-  return s_->bodyCount_;
-}
 int World::contactCount() const {
   return static_cast<int>(s_->contacts_.size());
 }
@@ -198,6 +205,21 @@ const ContactEvents& World::contactEvents() const {
 }
 const SensorEvents& World::sensorEvents() const {
   return s_->sensorEvents_;
+}
+const std::vector<QuarantineEvent>& World::quarantineEvents() const {
+  return s_->quarantineEvents_;
+}
+
+const char* quarantineCauseName(QuarantineCause cause) {
+  switch (cause) {
+    case QuarantineCause::forceField:
+      return "force field";
+    case QuarantineCause::motion:
+      return "motion";
+    case QuarantineCause::contact:
+      return "contact";
+  }
+  return "unknown";
 }
 void World::addForceField(ForceField field) {
   s_->fields_.push_back(std::move(field));

@@ -68,6 +68,11 @@ struct ShapeDef {
   float restitution = 0.0f;
   ProxyFilter filter;
   bool isSensor = false;  // detects overlaps (sensorEvents()), never collides
+  // Which events the shape takes part in. A contact reports begin and end when either shape
+  // asks, and hits when either shape asks; a sensor reports a visitor when both ask.
+  bool contactEvents = true;
+  bool hitEvents = true;
+  bool sensorEvents = true;
   std::uint64_t userData = 0;
 };
 
@@ -99,42 +104,72 @@ struct WorldDef {
   // AVX2, four otherwise. The results are bit-identical at either width (a colour's constraints
   // are independent), so this changes speed only.
   int maxSolverLanes = 8;
+  // A body found faster than this (m/s, or rad/s turning) or with a state that is not finite
+  // is quarantined (QuarantineEvent): far above any game's bullets, far below what float
+  // arithmetic on the contacts of such a body can carry without overflowing.
+  float quarantineSpeed = 1e6f;
   // The region most bodies live in: the quadtree's world square. Bodies outside it still work.
   AABB bounds{{-512.0f, -512.0f}, {512.0f, 512.0f}};
 };
 
-// What a world query hit.
-struct WorldHit {
+// A shape and its body, with both user data: what events and queries name. Taken when the
+// event or hit was made, so it stays readable after the shape or body is destroyed.
+struct ShapeRef {
   ShapeId shape;
   BodyId body;
+  std::uint64_t shapeUserData = 0, bodyUserData = 0;
+};
+
+// What a cast hit.
+struct WorldHit : ShapeRef {
   Vec2 point{};   // world frame
   Vec2 normal{};  // surface normal of the shape hit
   float fraction = 0.0f;
 };
 
-// Events of the last step, read after it (cleared at the start of the next). A contact begins
-// when its manifold gets points: within the speculative margin, which for a fast body can be
-// the step before the surfaces meet (then the point and normal are those where they will meet,
-// and a fast pair that will not meet this step gets none); approachSpeed is measured then,
-// before the solve.
+// Which shapes a query sees: the collision bitmask against the shapes' filters, and optionally
+// a callback that can refuse any shape the bitmask lets through ("not the shooter's own
+// body"). The callback must not change the world.
+struct QueryFilter {
+  ProxyFilter bits;
+  std::function<bool(const ShapeRef&)> accept;
+  QueryFilter() = default;
+  QueryFilter(ProxyFilter filter) : bits(filter) {}  // NOLINT: a bitmask is a filter
+  QueryFilter(ProxyFilter filter, std::function<bool(const ShapeRef&)> callback)
+      : bits(filter), accept(std::move(callback)) {}
+  // Everything but the shapes of one body.
+  static QueryFilter ignoring(BodyId body, ProxyFilter filter = {}) {
+    return {filter, [body](const ShapeRef& s) { return !(s.body == body); }};
+  }
+};
+
+// Events of the last step, read after it: they stay unchanged until the next step, whatever
+// the game destroys meanwhile. A contact begins when its manifold gets points: within the
+// speculative margin, which for a fast body can be the step before the surfaces meet (then the
+// point and normal are those where they will meet, and a fast pair that will not meet this step
+// gets none); approachSpeed is measured then, before the solve. Contacts and sensor overlaps
+// ended by a destroy, a disable or a change of filter between steps are reported with the next
+// step's events (destroyed: true).
 struct ContactBeginEvent {
-  ShapeId shapeA, shapeB;
-  Vec2 point{}, normal{};   // normal from A to B
+  ShapeRef a, b;
+  Vec2 point{}, normal{};   // normal from a to b
   float approachSpeed = 0;  // along the normal, positive when closing
 };
 struct ContactEndEvent {
-  ShapeId shapeA, shapeB;
+  ShapeRef a, b;
+  bool destroyed = false;  // ended by destroying or disabling a side, not by parting
 };
-// A contact that began (or was hit again) faster than WorldDef::hitEventThreshold.
+// A contact that began closing faster than WorldDef::hitEventThreshold.
 struct ContactHitEvent {
-  ShapeId shapeA, shapeB;
+  ShapeRef a, b;
   Vec2 point{}, normal{};
   float approachSpeed = 0;
 };
 // A shape entered or left a sensor. A visitor that passes right through a sensor within one
 // step (a bullet through a trip line) reports both in that step.
 struct SensorEvent {
-  ShapeId sensor, visitor;
+  ShapeRef sensor, visitor;
+  bool destroyed = false;  // (end only) ended by destroying or disabling a side
 };
 struct SensorEvents {
   std::vector<SensorEvent> begin, end;
@@ -144,6 +179,22 @@ struct ContactEvents {
   std::vector<ContactBeginEvent> begin;
   std::vector<ContactEndEvent> end;
   std::vector<ContactHitEvent> hit;
+};
+
+// A body whose state became unusable during a step (not finite, or faster than
+// WorldDef::quarantineSpeed) is taken out of the simulation before its contacts spread the
+// value to its neighbours: it is disabled at where it was when the step began, at rest, and
+// reported. Re-enable it (setEnabled) or destroy it.
+enum class QuarantineCause : std::uint8_t {
+  forceField,  // a force field gave it a force or torque that was not finite
+  motion,      // its free motion (forces, gravity, its own velocity) left it not finite or too fast
+  contact,     // the contact solve or continuous collision did
+};
+const char* quarantineCauseName(QuarantineCause cause);
+struct QuarantineEvent {
+  BodyId body;
+  std::uint64_t userData = 0;
+  QuarantineCause cause = QuarantineCause::motion;
 };
 
 // Wall-clock milliseconds of the last step, by phase.
@@ -186,6 +237,10 @@ class ForceStage {
 
 using ForceField = std::function<void(ForceStage&)>;
 
+// A world's whole simulation state as bytes (World::snapshot): restored into a world made with
+// the same force fields, it continues bit for bit as if never interrupted.
+using WorldSnapshot = std::vector<std::uint8_t>;
+
 class World {
  public:
   explicit World(const WorldDef& def = {});
@@ -193,14 +248,19 @@ class World {
   World(World&&) noexcept;
   World& operator=(World&&) noexcept;
 
+  // Bodies and shapes. Ids are generational: a destroyed body's or shape's slot is reused with
+  // a new generation, and the old id is refused (isValid false; other calls throw
+  // std::invalid_argument). Destroying ends the contacts it had (end events, next step).
   BodyId createBody(const BodyDef& def);
   void destroyBody(BodyId id);
   ShapeId createShape(BodyId body, const Shape& shape, const ShapeDef& def = {});
+  void destroyShape(ShapeId id);
+  bool isValid(BodyId id) const;
+  bool isValid(ShapeId id) const;
 
   void step(float dt);
 
   // Body state.
-  bool isValid(BodyId id) const;
   Vec2 position(BodyId id) const;  // body origin
   // The body origin as the world keeps it, in double: far from the world origin a float
   // position is coarse (1 mm apart 10 km out) and position() rounds to it.
@@ -214,13 +274,41 @@ class World {
   float rotationalInertia(BodyId id) const;  // about the centre of mass
   BodyType type(BodyId id) const;
   std::uint64_t userData(BodyId id) const;
+  float gravityScale(BodyId id) const;
+  bool isBullet(BodyId id) const;
+  bool isEnabled(BodyId id) const;
   void setLinearVelocity(BodyId id, Vec2 v);
   void setAngularVelocity(BodyId id, float w);
   void setTransform(BodyId id, Vec2 position, float angle);
+  // A kinematic body moved to the target over the next step of dt: its velocities are set so
+  // that it arrives there, pushing what is in its way (a door, a lift, a moving platform).
+  void setTargetTransform(BodyId id, Vec2 position, float angle, float dt);
+  // Changes what the body is; its mass, contacts and broadphase proxies follow.
+  void setType(BodyId id, BodyType type);
+  void setGravityScale(BodyId id, float scale);
+  void setBullet(BodyId id, bool bullet);
+  void setUserData(BodyId id, std::uint64_t userData);
+  // A disabled body keeps its id, shapes and state but takes no part in anything: no contacts,
+  // no queries, not stepped. Enabling puts it back where it was.
+  void setEnabled(BodyId id, bool enabled);
   bool isAwake(BodyId id) const;
   // Wakes the body and every body asleep in its island.
   void wake(BodyId id);
   int awakeBodyCount() const;
+
+  // Shape properties. Changes take effect at once, on existing contacts too.
+  const Shape& shape(ShapeId id) const;
+  std::uint64_t userData(ShapeId id) const;
+  bool isSensor(ShapeId id) const;
+  ProxyFilter filter(ShapeId id) const;
+  float friction(ShapeId id) const;
+  float restitution(ShapeId id) const;
+  void setUserData(ShapeId id, std::uint64_t userData);
+  void setFilter(ShapeId id, ProxyFilter filter);  // pairs the filter now refuses end
+  void setFriction(ShapeId id, float friction);
+  void setRestitution(ShapeId id, float restitution);
+  void setSensor(ShapeId id, bool isSensor);
+  void setEventFlags(ShapeId id, bool contactEvents, bool hitEvents, bool sensorEvents);
 
   // Forces and torques act for the next step, then are cleared. Impulses change the velocity
   // at once.
@@ -230,41 +318,57 @@ class World {
   void applyLinearImpulse(BodyId id, Vec2 impulse, Vec2 worldPoint);
   void applyAngularImpulse(BodyId id, float impulse);
 
+  // Queries. Rays and casts go along origin + t * translation, t in [0, 1]; the closest hit
+  // (ties to the lower shape id) or every hit sorted by fraction, then shape id. Sensors are
+  // skipped. A ray starting inside a solid shape hits it at fraction 0 (see raycast.h).
+  std::optional<WorldHit> castRay(Vec2 origin, Vec2 translation,
+                                  const QueryFilter& filter = {}) const;
+  std::vector<WorldHit> castRayAll(Vec2 origin, Vec2 translation,
+                                   const QueryFilter& filter = {}) const;
+  // A circle, or any shape placed at `start`, swept along the translation without turning
+  // (bullets with a size, a character's movement, a grenade's next hop).
+  std::optional<WorldHit> castCircle(Vec2 center, float radius, Vec2 translation,
+                                     const QueryFilter& filter = {}) const;
+  std::optional<WorldHit> castShape(const Shape& shape, const Transform& start, Vec2 translation,
+                                    const QueryFilter& filter = {}) const;
+  // Shapes whose AABB overlaps the box; that contain the point; that overlap the shape placed
+  // at `where` (exactly, not by bounding boxes: a blast's circle, a melee swing's box). Sorted
+  // by shape id; sensors included.
+  std::vector<ShapeRef> overlapAABB(const AABB& box, const QueryFilter& filter = {}) const;
+  std::vector<ShapeRef> overlapPoint(Vec2 point, const QueryFilter& filter = {}) const;
+  std::vector<ShapeRef> overlapShape(const Shape& shape, const Transform& where,
+                                     const QueryFilter& filter = {}) const;
   // The same queries for a caller that wants what they find disturbed (a blast that wakes the
   // crates in its area, a ray that should rouse what it touches): with Wake::yes every
   // sleeping body they report is woken, with its island.
   enum class Wake : std::uint8_t { no, yes };
-  std::optional<WorldHit> castRay(Vec2 origin, Vec2 translation, ProxyFilter filter, Wake wake);
-  std::vector<ShapeId> overlapAABB(const AABB& box, ProxyFilter filter, Wake wake);
-
-  // Queries. Rays and casts go along origin + t * translation, t in [0, 1]; the closest hit
-  // (ties to the lower shape id) or every hit sorted by fraction, then shape id. Sensors are
-  // skipped. A ray starting inside a solid shape hits it at fraction 0 (see raycast.h).
-  std::optional<WorldHit> castRay(Vec2 origin, Vec2 translation, ProxyFilter filter = {}) const;
-  std::vector<WorldHit> castRayAll(Vec2 origin, Vec2 translation, ProxyFilter filter = {}) const;
-  // A circle swept along the translation (bullets with a size, a character's movement).
-  std::optional<WorldHit> castCircle(Vec2 center, float radius, Vec2 translation,
-                                     ProxyFilter filter = {}) const;
-  // Shapes whose AABB overlaps the box, or that contain the point; sorted by shape id.
-  std::vector<ShapeId> overlapAABB(const AABB& box, ProxyFilter filter = {}) const;
-  std::vector<ShapeId> overlapPoint(Vec2 point, ProxyFilter filter = {}) const;
+  std::optional<WorldHit> castRay(Vec2 origin, Vec2 translation, const QueryFilter& filter,
+                                  Wake wake);
+  std::vector<ShapeRef> overlapAABB(const AABB& box, const QueryFilter& filter, Wake wake);
+  std::vector<ShapeRef> overlapShape(const Shape& shape, const Transform& where,
+                                     const QueryFilter& filter, Wake wake);
   BodyId bodyOf(ShapeId shape) const;
+  ShapeRef ref(ShapeId shape) const;  // the shape, its body and their user data
 
+  // The last step's events (see ContactBeginEvent): unchanged until the next step.
   const ContactEvents& contactEvents() const;
   const SensorEvents& sensorEvents() const;
+  const std::vector<QuarantineEvent>& quarantineEvents() const;
 
-  // A user force evaluated at every integrator stage (springs, drag, attractors).
+  // A user force evaluated at every integrator stage (springs, drag, attractors). It sees
+  // sleeping bodies at rest; a force on one wakes it after the step (it acts from the next).
+  // A force field that names a body that does not exist makes step() throw once the step is
+  // done (the world stays whole); a force that is not finite quarantines its body.
   void addForceField(ForceField field);
 
   int bodyCount() const;
+  int shapeCount() const;
   int contactCount() const;
   int touchingContactCount() const;
 
   // Read-only views for tools that draw or inspect a world (the renderer's overlay).
   std::vector<BodyId> bodies() const;              // alive ones, by index
   std::vector<ShapeId> shapesOf(BodyId id) const;  // in creation order
-  const Shape& shape(ShapeId id) const;
-  bool isSensor(ShapeId id) const;
   struct ContactPointView {
     Vec2 point, normal;  // normal from shape A to shape B
     float separation;
@@ -276,8 +380,15 @@ class World {
   const Profile& profile() const;
   double time() const;
 
-  // FNV-1a over the bits of every body's position, angle and velocities, in creation order:
-  // equal hashes mean bit-identical states.
+  // Everything that decides the next step, as bytes: bodies, shapes, contacts with their warm
+  // starts, sleep timers and islands, sensor overlaps, the broadphase tree, pending events.
+  // restore() takes a snapshot of a world with the same definition and force fields and
+  // continues exactly as the snapshotted world would; a snapshot that is malformed or of
+  // another format is refused with std::invalid_argument and the world left as it was.
+  WorldSnapshot snapshot() const;
+  void restore(std::span<const std::uint8_t> snapshot);
+
+  // FNV-1a over the snapshot's bytes: equal hashes mean the next steps will be bit-identical.
   std::uint64_t stateHash() const;
 
   // Total kinetic energy plus gravitational potential energy (relative to y = 0).

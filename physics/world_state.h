@@ -7,11 +7,15 @@
 // (continuous.cpp), sensors (sensor.cpp) and queries (query.cpp).
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "physics/broadphase.h"
@@ -40,6 +44,14 @@ inline std::uint64_t pairKey(std::int32_t a, std::int32_t b) {
          static_cast<std::uint32_t>(b);
 }
 
+// Friction and restitution of a pair, as Box2D mixes them: geometric mean, maximum.
+inline float mixFriction(float a, float b) {
+  return std::sqrt(a * b);
+}
+inline float mixRestitution(float a, float b) {
+  return std::max(a, b);
+}
+
 class WorldState {
  public:
   explicit WorldState(const WorldDef& def);
@@ -59,6 +71,7 @@ class WorldState {
     float linearDamping = 0, angularDamping = 0, gravityScale = 1;
     float minExtent = 0, maxExtent = 0;  // for continuous collision (see continuous())
     bool allowSleep = true;
+    bool enabled = true;
     float sleepTime = 0;       // how long it has been slower than the sleep tolerances
     std::int32_t island = -1;  // its sleeping island, -1 while awake
     std::uint64_t userData = 0;
@@ -74,8 +87,10 @@ class WorldState {
     std::uint32_t generation = 0;
     bool alive = false;
     bool isSensor = false;
+    bool contactEvents = true, hitEvents = true, sensorEvents = true;
     float density = 0, friction = 0, restitution = 0;
-    ProxyId proxy = kNullProxy;
+    ProxyFilter filter;
+    ProxyId proxy = kNullProxy;  // kNullProxy while its body is disabled
     std::uint64_t userData = 0;
     BoundingCircle bound{};  // in the body frame: how far the shape reaches as the body turns
   };
@@ -86,11 +101,33 @@ class WorldState {
     float friction = 0, restitution = 0;
     bool touching = false;
   };
+  // A sensor shape and a shape whose fat AABB overlaps it.
+  struct SensorPair {
+    std::int32_t sensor, visitor;
+    bool overlapping = false;
+  };
 
   // ---- bodies and shapes (body.cpp)
   BodyId createBody(const BodyDef& def);
   void destroyBody(BodyId id);
   ShapeId createShape(BodyId body, const Shape& shape, const ShapeDef& def);
+  void destroyShape(ShapeId id);
+  const Body* find(BodyId id) const;  // nullptr for a stale or bad id
+  ShapeRecord& shapeRecord(ShapeId id) {
+    return const_cast<ShapeRecord&>(std::as_const(*this).shapeRecord(id));
+  }
+  ShapeRef ref(std::int32_t shape) const;
+  // A body's shapes into the broadphase, or out of it with their contacts and sensor pairs
+  // (enabling and disabling, changing type or sensor flag); out wakes what they touched.
+  void addProxies(Body& b);
+  void addProxy(Body& b, std::int32_t shape);
+  void removeProxies(Body& b);
+  void removeProxy(std::int32_t shape);
+  // A simulated body's slot: taken into the awake slots, or given up (the body then has none).
+  void takeSlot(std::int32_t index, Vec2 velocity, float angularVelocity);
+  void releaseSlot(Body& b);
+  void disable(Body& b);
+  void enable(Body& b);
   std::size_t checked(BodyId id) const;  // the body's index; throws for a stale or bad id
   Body& body(BodyId id) { return bodies_[checked(id)]; }
   const Body& body(BodyId id) const { return bodies_[checked(id)]; }
@@ -124,7 +161,15 @@ class WorldState {
   void narrowphase(float dt);
   void foresee(Manifold& m, const ShapeRecord& ra, const Transform& xfA, const ShapeRecord& rb,
                const Transform& xfB, float dt) const;
-  void destroyContact(std::size_t index);
+  // destroyed: ended by a destroy, disable or filter change, not by the shapes parting.
+  void destroyContact(std::size_t index, bool destroyed = false);
+  bool wantsContactEvents(const Contact& c) const {
+    return shapes_[static_cast<std::size_t>(c.shapeA)].contactEvents ||
+           shapes_[static_cast<std::size_t>(c.shapeB)].contactEvents;
+  }
+  // Where end events made now go: the step's own, or (between steps) the next step's.
+  ContactEvents& contactSink() { return stepping_ ? events_ : pendingEvents_; }
+  SensorEvents& sensorSink() { return stepping_ ? sensorEvents_ : pendingSensorEvents_; }
 
   // ---- the solver's stages (solver.cpp)
   void solve(float dt);
@@ -134,6 +179,7 @@ class WorldState {
   void warmStart();
   void integratePositions(float h);
   void storeVelocities();
+  void quarantineUnusable(QuarantineCause cause);
   void loadVelocities(std::vector<SolverBody>& to) const;
   void storeImpulses();
   void applyRestitution();
@@ -142,17 +188,33 @@ class WorldState {
   void accelerations(std::span<const double> q, std::span<const float> v, double t,
                      std::span<float> a);
 
+  // ---- the step's bookends (world.cpp)
+  void beginEvents();
+  void endStep();
+
   // ---- after the solve (continuous.cpp, world.cpp, sensor.cpp)
   void continuous();
   void refit(float dt);
   void updateSensors();
-  void destroySensorPair(std::size_t index);
+  void destroySensorPair(std::size_t index, bool destroyed = false);
+  bool wantsSensorEvents(const SensorPair& sp) const {
+    return shapes_[static_cast<std::size_t>(sp.sensor)].sensorEvents &&
+           shapes_[static_cast<std::size_t>(sp.visitor)].sensorEvents;
+  }
 
   // ---- queries (query.cpp)
-  CastOutput rayAgainst(ProxyId proxy, const RayCastInput& ray) const;
+  bool accepts(const QueryFilter& filter, std::int32_t shape) const;
+  const Transform& transformOf(const ShapeRecord& r) const;
+  WorldHit hitOf(const ProxyHit& h) const;
+  // The closest hit of a cast: exact(record, ray) tests one solid shape the filter accepts.
   template <class Exact>
-  std::optional<WorldHit> closest(const RayCastInput& in, float radius, ProxyFilter filter,
+  std::optional<WorldHit> closest(const RayCastInput& in, float radius, const QueryFilter& filter,
                                   Exact&& exact) const;
+  // The shapes whose fat AABB meets the box, that exact(record) keeps and the filter accepts,
+  // sorted by shape index.
+  template <class Exact>
+  std::vector<ShapeRef> overlapping(const AABB& box, const QueryFilter& filter,
+                                    Exact&& exact) const;
 
   // ---- batched rotations: angles queued with their owners, their sines and cosines taken in
   // one batch (rc::sincos overlaps independent calls), each owner handed its rotation.
@@ -178,6 +240,7 @@ class WorldState {
   std::vector<Body> bodies_;
   std::vector<std::int32_t> freeBodies_;
   std::vector<ShapeRecord> shapes_;
+  std::vector<std::int32_t> freeShapes_;
   std::vector<Contact> contacts_;
   std::vector<ForceField> fields_;
   // Per simulated (kinematic and dynamic) body, three degrees of freedom: x, y and angle of the
@@ -232,13 +295,15 @@ class WorldState {
   std::vector<std::int32_t> sweptShapes_;
   std::vector<std::int32_t> fastSlots_;  // the slots of bodies that moved far enough to sweep
   std::vector<std::int32_t> candidateStart_, candidates_, fillCursor_;
-  ContactEvents events_;
-  SensorEvents sensorEvents_;
-  // Sensor shapes and the shapes whose fat AABBs overlap them.
-  struct SensorPair {
-    std::int32_t sensor, visitor;
-    bool overlapping = false;
-  };
+  ContactEvents events_, pendingEvents_;
+  SensorEvents sensorEvents_, pendingSensorEvents_;
+  std::vector<QuarantineEvent> quarantineEvents_;
+  bool stepping_ = false;
+  // Found during the step, acted on at its end: bodies to quarantine (index, cause), bodies a
+  // force field pushed while they slept, and the first id a force field named that is stale.
+  std::vector<std::pair<std::int32_t, QuarantineCause>> quarantine_;
+  std::vector<std::int32_t> fieldWakes_;
+  std::optional<BodyId> staleFieldId_;
   std::vector<SensorPair> sensorPairs_;
   std::unordered_map<std::uint64_t, std::int32_t> sensorIndex_;
   // Contacts by their shape pair, for finding whether a new proxy pair already has one.
@@ -246,6 +311,7 @@ class WorldState {
   Profile profile_;
   double time_ = 0;
   int bodyCount_ = 0;
+  int shapeCount_ = 0;
 };
 
 }  // namespace rc

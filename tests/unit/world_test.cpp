@@ -821,10 +821,17 @@ TEST(World, SleepingIslandsWakeOnContact) {
   rc::World w;
   const std::vector<BodyId> row = restingRow(w, 5, 2.0f);
   EXPECT_EQ(w.awakeBodyCount(), 0);  // five islands of one, all asleep
-  const std::uint64_t asleep = w.stateHash();
+  auto positions = [&] {
+    std::vector<double> out;
+    for (BodyId body : row)
+      for (double x : w.precisePosition(body))
+        out.push_back(x);
+    return out;
+  };
+  const std::vector<double> asleep = positions();
   for (int i = 0; i < 30; ++i)
     w.step(1.0f / 60.0f);
-  EXPECT_EQ(w.stateHash(), asleep);  // nothing moved
+  EXPECT_EQ(positions(), asleep);  // nothing moved
   // A ball dropped on box 2 wakes box 2 only.
   BodyId ball = w.createBody(dynamicAt({4.0f, 3.0f}));
   w.createShape(ball, rc::makeCircle({}, 0.25f));
@@ -1052,7 +1059,7 @@ TEST(World, QueriesFindWhatTheyShould) {
   EXPECT_NEAR(hit->fraction, 5.5f / 20.0f, 1e-6f);
   EXPECT_NEAR(hit->normal.y, 1.0f, 1e-6f);
   // Filtered: the circle's category is not in the mask.
-  hit = w.castRay({0, 10}, {0, -20}, {1, 1});
+  hit = w.castRay({0, 10}, {0, -20}, rc::ProxyFilter{1, 1});
   ASSERT_TRUE(hit.has_value());
   EXPECT_EQ(hit->shape, lowShape);
   EXPECT_NEAR(hit->point.y, 1.5f, 1e-5f);
@@ -1071,7 +1078,10 @@ TEST(World, QueriesFindWhatTheyShould) {
   EXPECT_NEAR(swept->normal.y, 1.0f, 1e-4f);
   EXPECT_FALSE(w.castRay({5, 10}, {0, 5}).has_value());  // going up, nothing there
   // Point and box overlaps.
-  EXPECT_EQ(w.overlapPoint({0.2f, 1.2f}), std::vector<rc::ShapeId>{lowShape});
+  const std::vector<rc::ShapeRef> inBox = w.overlapPoint({0.2f, 1.2f});
+  ASSERT_EQ(inBox.size(), 1u);
+  EXPECT_EQ(inBox[0].shape, lowShape);
+  EXPECT_EQ(inBox[0].body, low);
   EXPECT_EQ(w.overlapPoint({0.45f, 4.45f}).size(), 0u);  // in the ball's box, not in the ball
   EXPECT_EQ(w.overlapAABB({{-0.1f, 0.9f}, {0.1f, 4.1f}}).size(), 2u);
   EXPECT_THROW(w.castRay({0, std::numeric_limits<float>::quiet_NaN()}, {0, 1}),
@@ -1104,11 +1114,11 @@ TEST(World, ContactEventsOfABounce) {
     };
     for (const auto& e : w.contactEvents().begin) {
       begins.push_back(e.approachSpeed);
-      checkGeometry(e.shapeA, e.point, e.normal);
+      checkGeometry(e.a.shape, e.point, e.normal);
     }
     for (const auto& e : w.contactEvents().hit) {
       hits.push_back(e.approachSpeed);
-      checkGeometry(e.shapeA, e.point, e.normal);
+      checkGeometry(e.a.shape, e.point, e.normal);
     }
     ends += static_cast<int>(w.contactEvents().end.size());
   }
@@ -1138,13 +1148,14 @@ TEST(World, SensorEvents) {
   for (int i = 0; i < 120; ++i) {
     w.step(1.0f / 60.0f);
     for (const rc::SensorEvent& e : w.sensorEvents().begin) {
-      EXPECT_EQ(e.sensor, zoneShape);
-      EXPECT_EQ(e.visitor, ballShape);
+      EXPECT_EQ(e.sensor.shape, zoneShape);
+      EXPECT_EQ(e.visitor.shape, ballShape);
+      EXPECT_EQ(e.visitor.body, ball);
       ++begins;
       enteredAt = w.position(ball).y;
     }
     for (const rc::SensorEvent& e : w.sensorEvents().end) {
-      EXPECT_EQ(e.visitor, ballShape);
+      EXPECT_EQ(e.visitor.shape, ballShape);
       ++ends;
       leftAt = w.position(ball).y;
     }

@@ -49,7 +49,7 @@ void ForceStage::addForce(BodyId id, Vec2 force) {
   const WorldState::Body& b = world_.bodies_[static_cast<std::size_t>(id.index)];
   if (b.type != BodyType::dynamicBody || !b.enabled) return;
   if (!isFinite(force)) {
-    world_.quarantine_.emplace_back(id.index, QuarantineCause::forceField);
+    world_.requestQuarantine(id.index, QuarantineCause::forceField);
     return;
   }
   if (s < 0) {
@@ -68,7 +68,7 @@ void ForceStage::addTorque(BodyId id, float torque) {
   const WorldState::Body& b = world_.bodies_[static_cast<std::size_t>(id.index)];
   if (b.type != BodyType::dynamicBody || !b.enabled) return;
   if (!std::isfinite(torque)) {
-    world_.quarantine_.emplace_back(id.index, QuarantineCause::forceField);
+    world_.requestQuarantine(id.index, QuarantineCause::forceField);
     return;
   }
   if (s < 0) {

@@ -6,8 +6,10 @@
 // before reading it (the solver's lanes, scratch arrays, the profile) is not. Restoring decodes
 // into a new state, checks every index and count in it, and only then replaces the world's, so a
 // refused snapshot leaves the world as it was.
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "physics/bytes.h"
 #include "physics/world.h"
@@ -346,6 +348,10 @@ WorldSnapshot World::snapshot() const {
   return bytes;
 }
 
+namespace {
+void decode(ByteReader& r, WorldState& s);
+}  // namespace
+
 void World::restore(std::span<const std::uint8_t> bytes) {
   ByteReader r(bytes, "snapshot");
   if (r.u32() != kMagic) r.fail("not a world snapshot");
@@ -358,8 +364,29 @@ void World::restore(std::span<const std::uint8_t> bytes) {
       r.fail(std::string("taken from a world whose ") + name + " is " + formatNumber(theirs) +
              ", this one's is " + formatNumber(mine));
   });
-  auto t = std::make_unique<WorldState>(s_->def_);
-  WorldState& s = *t;
+  // The new state borrows the world's broadphase (its finest levels hold a million cells: a new
+  // one per restore would cost milliseconds) and gives it back, as it was, if it is refused.
+  WorldSnapshot oldTree;
+  ByteWriter treeWriter(oldTree);
+  s_->broadphase_.save(treeWriter);
+  auto t = std::make_unique<WorldState>(s_->def_, 0);
+  t->broadphase_ = std::move(s_->broadphase_);
+  try {
+    decode(r, *t);
+  } catch (...) {
+    s_->broadphase_ = std::move(t->broadphase_);
+    ByteReader treeReader(oldTree, "snapshot");
+    s_->broadphase_.load(treeReader);
+    throw;
+  }
+  t->fields_ = std::move(s_->fields_);
+  s_ = std::move(t);
+}
+
+namespace {
+
+// The rest of the snapshot into s, checked.
+void decode(ByteReader& r, WorldState& s) {
   auto need = [&](bool ok, const char* what) {
     if (!ok) r.fail(what);
   };
@@ -391,6 +418,15 @@ void World::restore(std::span<const std::uint8_t> bytes) {
     for (float* f : {&b.torque, &b.mass, &b.invMass, &b.inertia, &b.invInertia, &b.linearDamping,
                      &b.angularDamping, &b.gravityScale, &b.minExtent, &b.maxExtent, &b.sleepTime})
       *f = r.f32();
+    const float c = b.xf.q.c, sn = b.xf.q.s;
+    need(isFinite(b.xf.p) && std::isfinite(b.angle) && isFinite(b.localCenter) &&
+             isFinite(b.force) && std::isfinite(b.torque) && std::isfinite(b.mass) &&
+             std::isfinite(b.invMass) && std::isfinite(b.inertia) && std::isfinite(b.invInertia) &&
+             std::isfinite(b.linearDamping) && std::isfinite(b.angularDamping) &&
+             std::isfinite(b.gravityScale) && std::isfinite(b.minExtent) &&
+             std::isfinite(b.maxExtent) && std::isfinite(b.sleepTime) &&
+             std::fabs(c * c + sn * sn - 1.0f) < 1e-4f,
+         "a body's state is not finite");
     b.island = r.i32();
     b.userData = r.u64();
     b.slot = r.i32();
@@ -413,6 +449,10 @@ void World::restore(std::span<const std::uint8_t> bytes) {
     for (float* f : {&rec.density, &rec.friction, &rec.restitution, &rec.bound.center.x,
                      &rec.bound.center.y, &rec.bound.radius})
       *f = r.f32();
+    need(std::isfinite(rec.density) && std::isfinite(rec.friction) &&
+             std::isfinite(rec.restitution) && isFinite(rec.bound.center) &&
+             std::isfinite(rec.bound.radius),
+         "a shape's material is not finite");
     rec.filter.category = r.u32();
     rec.filter.mask = r.u32();
     rec.proxy = r.i32();
@@ -439,6 +479,16 @@ void World::restore(std::span<const std::uint8_t> bytes) {
                      &c.tangentImpulse[1], &c.friction, &c.restitution})
       *f = r.f32();
     c.touching = r.boolean();
+    bool finite =
+        isFinite(c.manifold.normal) && std::isfinite(c.friction) && std::isfinite(c.restitution);
+    for (int k = 0; k < 2; ++k)
+      finite = finite && std::isfinite(c.normalImpulse[k]) && std::isfinite(c.tangentImpulse[k]);
+    for (int k = 0; k < c.manifold.pointCount; ++k) {
+      const ManifoldPoint& p = c.manifold.points[k];
+      finite = finite && isFinite(p.point) && isFinite(p.anchorA) && isFinite(p.anchorB) &&
+               std::isfinite(p.separation);
+    }
+    need(finite, "a contact is not finite");
     return c;
   });
   getList(r, s.slotBody_, 4, [&] { return r.i32(); });
@@ -447,7 +497,8 @@ void World::restore(std::span<const std::uint8_t> bytes) {
   for (std::size_t k = 0; k < s.q_.size(); ++k) {
     s.q_[k] = r.f64();
     s.v_[k] = r.f32();
-    need(std::isfinite(s.q_[k]) && std::isfinite(s.v_[k]), "a body's state is not finite");
+    // (A position floats cannot hold would overflow the step's boxes.)
+    need(std::fabs(s.q_[k]) < 1e30 && std::isfinite(s.v_[k]), "a body's state is out of range");
   }
   getList(r, s.islands_, 4, [&] {
     std::vector<std::int32_t> island;
@@ -489,7 +540,9 @@ void World::restore(std::span<const std::uint8_t> bytes) {
     return i >= 0 && i < shapes && s.shapes_[static_cast<std::size_t>(i)].alive;
   };
   need(s.awakeCount_ >= 0 && s.awakeCount_ <= slots, "the awake count");
+  const auto islands = static_cast<std::int32_t>(s.islands_.size());
   int aliveBodies = 0, aliveShapes = 0, proxied = 0;
+  std::size_t listed = 0;
   for (std::int32_t i = 0; i < bodies; ++i) {
     const WorldState::Body& b = s.bodies_[static_cast<std::size_t>(i)];
     if (!b.alive) continue;
@@ -497,38 +550,66 @@ void World::restore(std::span<const std::uint8_t> bytes) {
     need((b.slot < 0) == (b.type == BodyType::staticBody) && b.slot >= -1 && b.slot < slots,
          "a body's slot");
     need(b.slot < 0 || s.slotBody_[static_cast<std::size_t>(b.slot)] == i, "a slot's body");
-    need(b.island >= -1 && b.island < static_cast<std::int32_t>(s.islands_.size()),
+    // Awake slots come first and hold enabled bodies in no island; an island's bodies sleep.
+    const bool awake = b.slot >= 0 && b.slot < s.awakeCount_;
+    need(!awake || (b.enabled && b.island < 0), "an awake body");
+    need(b.island >= -1 && b.island < islands && (b.island < 0 || (b.slot >= 0 && !awake)),
          "a body's island");
     for (std::int32_t shape : b.shapes)
       need(aliveShape(shape) && s.shapes_[static_cast<std::size_t>(shape)].body == i,
            "a body's shape");
+    listed += b.shapes.size();
   }
   for (std::int32_t i = 0; i < shapes; ++i) {
     const WorldState::ShapeRecord& rec = s.shapes_[static_cast<std::size_t>(i)];
     if (!rec.alive) continue;
     ++aliveShapes;
     need(aliveBody(rec.body), "a shape's body");
-    const bool enabled = s.bodies_[static_cast<std::size_t>(rec.body)].enabled;
+    const WorldState::Body& body = s.bodies_[static_cast<std::size_t>(rec.body)];
+    const bool enabled = body.enabled;
     proxied += enabled;
+    // Where the step will put it must be a box floats can hold with room to move (finite
+    // numbers near the float limit overflow in the step's sums).
+    const AABB box = computeAABB(rec.shape, body.xf);
+    need(box.isValid() && std::fabs(box.lower.x) < 1e30f && std::fabs(box.lower.y) < 1e30f &&
+             std::fabs(box.upper.x) < 1e30f && std::fabs(box.upper.y) < 1e30f,
+         "a shape is out of range");
     // (userData throws for a proxy that is not alive.)
     need(enabled
              ? rec.proxy >= 0 && static_cast<std::int32_t>(s.broadphase_.userData(rec.proxy)) == i
              : rec.proxy == kNullProxy,
          "a shape's proxy");
   }
-  need(aliveBodies == s.bodyCount_ && aliveShapes == s.shapeCount_, "the body or shape count");
+  // Each alive shape in exactly one body's list (a shape listed twice leaves another out).
+  need(aliveBodies == s.bodyCount_ && aliveShapes == s.shapeCount_ &&
+           listed == static_cast<std::size_t>(aliveShapes),
+       "the body or shape count");
   need(s.broadphase_.proxyCount() == proxied, "the proxy count");
   for (std::int32_t i : s.slotBody_)
     need(aliveBody(i), "a slot's body");
-  for (std::int32_t i : s.freeBodies_)
-    need(i >= 0 && i < bodies && !aliveBody(i), "a free body");
-  for (std::int32_t i : s.freeShapes_)
-    need(i >= 0 && i < shapes && !aliveShape(i), "a free shape");
-  for (const auto& island : s.islands_)
-    for (std::int32_t i : island)
-      need(aliveBody(i), "an island's body");
-  for (std::int32_t i : s.freeIslands_)
-    need(i >= 0 && i < static_cast<std::int32_t>(s.islands_.size()), "a free island");
+  // Free lists: distinct, and exactly the unused slots (creation pops them).
+  auto freeList = [&](const std::vector<std::int32_t>& list, std::int32_t size, auto&& unused,
+                      const char* what) {
+    std::vector<char> seen(static_cast<std::size_t>(size), 0);
+    std::size_t count = 0;
+    for (std::int32_t i = 0; i < size; ++i)
+      count += unused(i);
+    for (std::int32_t i : list)
+      need(i >= 0 && i < size && unused(i) && !std::exchange(seen[static_cast<std::size_t>(i)], 1),
+           what);
+    need(list.size() == count, what);
+  };
+  freeList(
+      s.freeBodies_, bodies, [&](std::int32_t i) { return !aliveBody(i); }, "a free body");
+  freeList(
+      s.freeShapes_, shapes, [&](std::int32_t i) { return !aliveShape(i); }, "a free shape");
+  for (std::int32_t k = 0; k < islands; ++k)
+    for (std::int32_t i : s.islands_[static_cast<std::size_t>(k)])
+      need(aliveBody(i) && s.bodies_[static_cast<std::size_t>(i)].island == k, "an island's body");
+  freeList(
+      s.freeIslands_, islands,
+      [&](std::int32_t k) { return s.islands_[static_cast<std::size_t>(k)].empty(); },
+      "a free island");
   for (std::int32_t i : s.pendingRefit_)
     need(i >= 0 && i < bodies, "a body to refit");
   for (std::size_t k = 0; k < s.contacts_.size(); ++k) {
@@ -539,13 +620,16 @@ void World::restore(std::span<const std::uint8_t> bytes) {
   }
   for (std::size_t k = 0; k < s.sensorPairs_.size(); ++k) {
     const WorldState::SensorPair& p = s.sensorPairs_[k];
-    need(aliveShape(p.sensor) && aliveShape(p.visitor), "a sensor pair's shapes");
+    need(aliveShape(p.sensor) && aliveShape(p.visitor) &&
+             s.shapes_[static_cast<std::size_t>(p.sensor)].isSensor &&
+             !s.shapes_[static_cast<std::size_t>(p.visitor)].isSensor,
+         "a sensor pair's shapes");
     need(s.sensorIndex_.emplace(pairKey(p.sensor, p.visitor), static_cast<std::int32_t>(k)).second,
          "a sensor pair twice");
   }
-  s.fields_ = std::move(s_->fields_);
-  s_ = std::move(t);
 }
+
+}  // namespace
 
 std::uint64_t World::stateHash() const {
   std::uint64_t h = 0xcbf29ce484222325ull;

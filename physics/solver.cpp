@@ -54,7 +54,11 @@ void WorldState::forEachBouncy(Solve&& solve) {
 // velocity. Restitution is applied once, after the last substep.
 void WorldState::solve(float dt) {
   prepareContacts();
-  if (awakeCount_ == 0) return;  // nothing awake: nothing to solve
+  if (awakeCount_ == 0) {
+    // Nothing to solve; force fields still look once, so that one can wake what it pushes.
+    if (!fields_.empty()) accelerations({}, {}, time_, {});
+    return;
+  }
   prepareBodies();
   const float h = dt / static_cast<float>(def_.substeps);
   const ContactSoftness soft =
@@ -220,15 +224,16 @@ void WorldState::integrateFreeMotion(int substep, float h) {
     }
     if (b.angularDamping > 0.0f) v_[3 * s + 2] *= 1.0f / (1.0f + h * b.angularDamping);
   }
-  quarantineUnusable(QuarantineCause::motion);
+  quarantineUnusable(QuarantineCause::motion, true);
   freeV_.assign(v.begin(), v.end());
 }
 
 // A body whose velocity is not finite or beyond WorldDef::quarantineSpeed (its position then
 // follows from it) is put back where it began the step, at rest, before the contacts can hand the
 // value on; it is disabled once the step is done. One branch-free pass over the velocities
-// finds whether there is any.
-void WorldState::quarantineUnusable(QuarantineCause cause) {
+// finds whether there is any. Before the step has begun (inStep false: a velocity or impulse
+// the game gave it) it is only stopped where it is.
+void WorldState::quarantineUnusable(QuarantineCause cause, bool inStep) {
   const std::size_t n = 3 * static_cast<std::size_t>(awakeCount_);
   const float limit = def_.quarantineSpeed;
   bool any = false;
@@ -240,12 +245,28 @@ void WorldState::quarantineUnusable(QuarantineCause cause) {
     for (std::size_t k = 0; k < 3; ++k)
       bad = bad || !(std::fabs(v_[3 * s + k]) <= limit) || !std::isfinite(q_[3 * s + k]);
     if (!bad) continue;
-    q_[3 * s] = startCenter_[2 * s];
-    q_[3 * s + 1] = startCenter_[2 * s + 1];
-    q_[3 * s + 2] = startAngle_[s];
+    if (inStep) {
+      q_[3 * s] = startCenter_[2 * s];
+      q_[3 * s + 1] = startCenter_[2 * s + 1];
+      q_[3 * s + 2] = startAngle_[s];
+    }
     v_[3 * s] = v_[3 * s + 1] = v_[3 * s + 2] = 0.0f;
-    quarantine_.emplace_back(slotBody_[s], cause);
+    requestQuarantine(slotBody_[s], cause);
   }
+}
+
+// Where the body began the step (it is put back there when the step is done): the solve's start
+// for an awake body during the step, where it is otherwise.
+void WorldState::requestQuarantine(std::int32_t body, QuarantineCause cause) {
+  const Body& b = bodies_[static_cast<std::size_t>(body)];
+  std::array<double, 3> start{};
+  const auto s = static_cast<std::size_t>(b.slot);
+  if (stepping_ && awake(b) && 2 * s + 1 < startCenter_.size()) {
+    start = {startCenter_[2 * s], startCenter_[2 * s + 1], startAngle_[s]};
+  } else if (b.slot >= 0) {
+    start = {q_[3 * s], q_[3 * s + 1], q_[3 * s + 2]};
+  }
+  quarantine_.push_back({body, cause, start});
 }
 
 // The carried impulses applied to the free velocities; restitution's approach speeds are read

@@ -43,7 +43,8 @@ void requireNonNegative(const char* what, const char* field, float v) {
   if (v < 0.0f) failDefinition(what, field, "is " + formatNumber(v) + " (must be >= 0)");
 }
 
-WorldState::WorldState(const WorldDef& def) : def_(def), broadphase_(def.bounds) {
+WorldState::WorldState(const WorldDef& def, int broadphaseDepth)
+    : def_(def), broadphase_(def.bounds, broadphaseDepth) {
   profile_.lanes = def.maxSolverLanes >= 8 ? ContactSolver::widestLanes() : 4;
 }
 
@@ -77,6 +78,13 @@ void World::step(float dt) {
   auto t = start;
   s.beginEvents();
   s.stepping_ = true;
+  // (Reset however the step ends: a force field may throw.)
+  struct Stepping {
+    bool& flag;
+    ~Stepping() { flag = false; }
+  } stepping{s.stepping_};
+  // A velocity the game gave (an impulse on top of a fast body) may already be unusable.
+  s.quarantineUnusable(QuarantineCause::motion, false);
   // Bodies new or changed since the last step: proxies stretched along this step's motion.
   std::sort(s.pendingRefit_.begin(), s.pendingRefit_.end());
   s.pendingRefit_.erase(std::unique(s.pendingRefit_.begin(), s.pendingRefit_.end()),
@@ -98,7 +106,7 @@ void World::step(float dt) {
   t = Clock::now();
   if (s.def_.continuous) s.continuous();
   // What the contacts made of the bodies: one pass, and nothing more unless one is unusable.
-  if (s.awakeCount_ > 0) s.quarantineUnusable(QuarantineCause::contact);
+  if (s.awakeCount_ > 0) s.quarantineUnusable(QuarantineCause::contact, true);
   profile.continuous = millisecondsSince(t);
   t = Clock::now();
   s.refit(dt);
@@ -138,10 +146,22 @@ void WorldState::beginEvents() {
 // What the step found to act on once it is whole: bodies to quarantine, sleeping bodies a force
 // field pushed.
 void WorldState::endStep() {
-  for (const auto& [index, cause] : quarantine_) {
-    Body& b = bodies_[static_cast<std::size_t>(index)];
+  for (const Quarantined& bad : quarantine_) {
+    Body& b = bodies_[static_cast<std::size_t>(bad.body)];
     if (!b.alive || !b.enabled) continue;  // named twice
-    quarantineEvents_.push_back({bodyId(index), b.userData, cause});
+    quarantineEvents_.push_back({bodyId(bad.body), b.userData, bad.cause});
+    if (b.slot >= 0) {
+      // Where it began the step, at rest.
+      const auto i = 3 * static_cast<std::size_t>(b.slot);
+      for (std::size_t k = 0; k < 3; ++k) {
+        q_[i + k] = bad.start[k];
+        v_[i + k] = 0.0f;
+      }
+      b.angle = static_cast<float>(bad.start[2]);
+      b.xf.q = Rot::fromAngle(b.angle);
+      const std::array<double, 2> origin = preciseOrigin(b);
+      b.xf.p = {static_cast<float>(origin[0]), static_cast<float>(origin[1])};
+    }
     disable(b);
   }
   quarantine_.clear();

@@ -54,7 +54,8 @@ inline float mixRestitution(float a, float b) {
 
 class WorldState {
  public:
-  explicit WorldState(const WorldDef& def);
+  // broadphaseDepth: the quadtree's (Quadtree::kAutoDepth: from the bounds).
+  explicit WorldState(const WorldDef& def, int broadphaseDepth = Quadtree::kAutoDepth);
 
   struct Body {
     BodyType type = BodyType::staticBody;
@@ -179,7 +180,8 @@ class WorldState {
   void warmStart();
   void integratePositions(float h);
   void storeVelocities();
-  void quarantineUnusable(QuarantineCause cause);
+  void quarantineUnusable(QuarantineCause cause, bool inStep);
+  void requestQuarantine(std::int32_t body, QuarantineCause cause);
   void loadVelocities(std::vector<SolverBody>& to) const;
   void storeImpulses();
   void applyRestitution();
@@ -299,9 +301,15 @@ class WorldState {
   SensorEvents sensorEvents_, pendingSensorEvents_;
   std::vector<QuarantineEvent> quarantineEvents_;
   bool stepping_ = false;
-  // Found during the step, acted on at its end: bodies to quarantine (index, cause), bodies a
-  // force field pushed while they slept, and the first id a force field named that is stale.
-  std::vector<std::pair<std::int32_t, QuarantineCause>> quarantine_;
+  // Found during the step, acted on at its end: bodies to quarantine (with where they began the
+  // step: centre and angle), bodies a force field pushed while they slept, and the first id a
+  // force field named that is stale.
+  struct Quarantined {
+    std::int32_t body;
+    QuarantineCause cause;
+    std::array<double, 3> start;
+  };
+  std::vector<Quarantined> quarantine_;
   std::vector<std::int32_t> fieldWakes_;
   std::optional<BodyId> staleFieldId_;
   std::vector<SensorPair> sensorPairs_;

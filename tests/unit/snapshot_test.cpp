@@ -1,0 +1,282 @@
+// World::snapshot and World::restore: a restored world continues bit for bit as the original
+// (the hash covers everything that decides the next step), rollback and synctest work, and a
+// snapshot that is truncated, corrupt, of another format or of another world is refused with the
+// world left as it was.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "physics/random.h"
+#include "physics/world.h"
+
+namespace {
+
+using rc::BodyId;
+using rc::Vec2;
+
+constexpr float kDt = 1.0f / 60.0f;
+
+rc::BodyDef dynamicAt(Vec2 p, float angle = 0.0f) {
+  rc::BodyDef d;
+  d.type = rc::BodyType::dynamicBody;
+  d.position = p;
+  d.angle = angle;
+  return d;
+}
+
+// A world that has everything a snapshot must carry: a settling pile (contacts with warm
+// starts), bouncing balls, a sleeping pile far off, a kinematic mover, a sensor zone, a bullet,
+// a body with damping, shapes destroyed and their slots reused, a destroyed body, a disabled
+// body, and a force field (a spring to a point) that the restoring world installs the same way.
+struct RichScene {
+  rc::World world;
+  BodyId mover, sprung, disabled;
+  explicit RichScene(std::uint64_t seed) {
+    rc::World& w = world;
+    rc::BodyDef groundDef;
+    const BodyId ground = w.createBody(groundDef);
+    w.createShape(ground, rc::makeBox(30, 0.5f, {0, -0.5f}));
+    w.createShape(ground, rc::makeBox(0.5f, 10, {-30, 10}));
+    w.createShape(ground, rc::makeBox(0.5f, 10, {30, 10}));
+    rc::Random rng(seed);
+    for (int i = 0; i < 40; ++i) {
+      const BodyId b = w.createBody(dynamicAt(
+          {rng.uniform(-10, 10), 0.6f + 0.9f * static_cast<float>(i)}, rng.uniform(-1, 1)));
+      rc::ShapeDef sd;
+      sd.restitution = i % 4 == 0 ? 0.6f : 0.0f;
+      sd.friction = rng.uniform(0.2f, 0.9f);
+      if (i % 3 == 0) {
+        w.createShape(b, rc::makeCircle({}, rng.uniform(0.2f, 0.5f)), sd);
+      } else if (i % 3 == 1) {
+        w.createShape(b, rc::makeBox(rng.uniform(0.2f, 0.5f), rng.uniform(0.2f, 0.5f)), sd);
+      } else {
+        w.createShape(b, rc::makeCapsule({-0.3f, 0}, {0.3f, 0}, 0.2f), sd);
+      }
+    }
+    // A pile far off that falls asleep while the rest moves.
+    for (int i = 0; i < 4; ++i) {
+      const BodyId b = w.createBody(dynamicAt({20, 0.5f + 1.0f * static_cast<float>(i)}));
+      w.createShape(b, rc::makeBox(0.5f, 0.5f));
+    }
+    rc::BodyDef moverDef;
+    moverDef.type = rc::BodyType::kinematicBody;
+    moverDef.position = {-20, 1};
+    moverDef.linearVelocity = {2, 0};
+    mover = w.createBody(moverDef);
+    w.createShape(mover, rc::makeBox(1, 0.25f));
+    rc::ShapeDef zone;
+    zone.isSensor = true;
+    w.createShape(w.createBody(groundDef), rc::makeBox(3, 3, {0, 3}), zone);
+    rc::BodyDef bulletDef = dynamicAt({-25, 8});
+    bulletDef.bullet = true;
+    bulletDef.linearVelocity = {300, -20};
+    w.createShape(w.createBody(bulletDef), rc::makeCircle({}, 0.05f));
+    rc::BodyDef dampedDef = dynamicAt({5, 12});
+    dampedDef.linearDamping = 0.5f;
+    dampedDef.angularDamping = 0.3f;
+    dampedDef.angularVelocity = 3;
+    sprung = w.createBody(dampedDef);
+    w.createShape(sprung, rc::makeBox(0.3f, 0.3f));
+    // Slots reused: a body destroyed, shapes destroyed and made again.
+    const BodyId gone = w.createBody(dynamicAt({0, 30}));
+    const rc::ShapeId extra = w.createShape(sprung, rc::makeCircle({0.4f, 0}, 0.1f));
+    w.destroyBody(gone);
+    w.destroyShape(extra);
+    w.createShape(sprung, rc::makeCircle({-0.4f, 0}, 0.1f));
+    disabled = w.createBody(dynamicAt({-5, 2}));
+    w.createShape(disabled, rc::makeBox(0.5f, 0.5f));
+    w.setEnabled(disabled, false);
+    installField(w);
+  }
+  // The restoring world must have the same fields: they are code, not state.
+  void installField(rc::World& w) const {
+    const BodyId body = sprung;
+    w.addForceField([body](rc::ForceStage& s) {
+      const Vec2 d = Vec2{5, 8} - s.center(body);
+      s.addForce(body, 40.0f * d - 2.0f * s.velocity(body));
+    });
+  }
+  // Things a game does between steps, at chosen steps.
+  void act(rc::World& w, int step) const {
+    if (step % 50 == 25)
+      w.setTargetTransform(mover, {-20.0f + 0.1f * static_cast<float>(step), 1}, 0, kDt);
+    if (step == 70) w.setEnabled(disabled, true);
+  }
+};
+
+std::vector<std::uint64_t> run(rc::World& w, const RichScene& scene, int from, int to) {
+  std::vector<std::uint64_t> hashes;
+  for (int k = from; k < to; ++k) {
+    scene.act(w, k);
+    w.step(kDt);
+    hashes.push_back(w.stateHash());
+  }
+  return hashes;
+}
+
+// Snapshotted at step 60 and restored into a new world, the scene goes on exactly as the
+// original: every step's hash equal up to step 240 (the hash covers contacts, warm starts, sleep
+// timers, the broadphase: a restore that missed any of them would drift within a few steps).
+TEST(Snapshot, RestoredWorldContinuesBitForBit) {
+  RichScene original(7);
+  run(original.world, original, 0, 60);
+  const rc::WorldSnapshot snap = original.world.snapshot();
+  const std::vector<std::uint64_t> expected = run(original.world, original, 60, 240);
+
+  RichScene other(7);  // the same definition and field; its bodies are overwritten
+  rc::World& copy = other.world;
+  copy.restore(snap);
+  EXPECT_EQ(copy.snapshot(), snap);
+  const std::vector<std::uint64_t> got = run(copy, original, 60, 240);
+  ASSERT_EQ(got.size(), expected.size());
+  for (std::size_t k = 0; k < got.size(); ++k)
+    ASSERT_EQ(got[k], expected[k]) << "first different at step " << 61 + k;
+  EXPECT_EQ(copy.snapshot(), original.world.snapshot());
+  EXPECT_GT(copy.awakeBodyCount(), 0);
+  EXPECT_LT(copy.awakeBodyCount(), copy.bodyCount());  // the far pile slept: islands carried
+}
+
+// Rollback: restoring an earlier snapshot into the same world and stepping again replays the
+// same steps.
+TEST(Snapshot, RollbackReplaysTheSameSteps) {
+  RichScene scene(11);
+  run(scene.world, scene, 0, 30);
+  const rc::WorldSnapshot at30 = scene.world.snapshot();
+  const std::vector<std::uint64_t> first = run(scene.world, scene, 30, 90);
+  scene.world.restore(at30);
+  EXPECT_EQ(run(scene.world, scene, 30, 90), first);
+}
+
+// GGPO's synctest: every step is taken twice, the second time from a restored snapshot; any
+// state a snapshot missed shows as a different hash at once.
+TEST(Snapshot, Synctest) {
+  RichScene scene(3);
+  rc::World& w = scene.world;
+  for (int k = 0; k < 150; ++k) {
+    const rc::WorldSnapshot before = w.snapshot();
+    scene.act(w, k);
+    w.step(kDt);
+    const std::uint64_t once = w.stateHash();
+    w.restore(before);
+    scene.act(w, k);
+    w.step(kDt);
+    ASSERT_EQ(w.stateHash(), once) << "step " << k + 1;
+  }
+}
+
+// Events are state the game reads after a restore, and ends made by destroying between steps
+// are delivered by the next step whether or not a restore came between.
+TEST(Snapshot, CarriesPublishedAndPendingEvents) {
+  rc::World w;
+  const BodyId ground = w.createBody({});
+  w.createShape(ground, rc::makeBox(5, 0.5f, {0, -0.5f}));
+  const BodyId box = w.createBody(dynamicAt({0, 0.5f}));
+  w.createShape(box, rc::makeBox(0.5f, 0.5f));
+  w.step(kDt);
+  ASSERT_EQ(w.contactEvents().begin.size(), 1u);
+  const rc::WorldSnapshot touching = w.snapshot();
+  w.destroyBody(box);
+  const rc::WorldSnapshot pending = w.snapshot();
+
+  rc::World other;
+  other.restore(touching);
+  EXPECT_EQ(other.contactEvents().begin.size(), 1u);
+  other.restore(pending);
+  EXPECT_FALSE(other.isValid(box));
+  other.step(kDt);
+  ASSERT_EQ(other.contactEvents().end.size(), 1u);
+  EXPECT_TRUE(other.contactEvents().end[0].destroyed);
+}
+
+// Every truncation of a snapshot is refused with a message naming the snapshot, and the world
+// is left as it was.
+TEST(Snapshot, TruncatedIsRefusedAndTheWorldUnchanged) {
+  RichScene scene(5);
+  run(scene.world, scene, 0, 20);
+  const rc::WorldSnapshot snap = scene.world.snapshot();
+  RichScene target(5);
+  const std::uint64_t before = target.world.stateHash();
+  for (std::size_t n = 0; n < snap.size(); n += 1 + n / 64) {
+    const std::span<const std::uint8_t> cut(snap.data(), n);
+    try {
+      target.world.restore(cut);
+      ADD_FAILURE() << "a snapshot cut to " << n << " of " << snap.size() << " bytes was taken";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("snapshot", 0), 0u) << e.what();
+    }
+    ASSERT_EQ(target.world.stateHash(), before) << "cut at " << n;
+  }
+}
+
+// Random corruption: each flipped byte is either refused (std::invalid_argument) or makes a
+// world that steps without crashing (a flipped position or velocity is still a number; the
+// quarantine takes care of an absurd one). Run under ASan+UBSan in CI.
+TEST(Snapshot, CorruptBytesAreRefusedOrHarmless) {
+  RichScene scene(9);
+  run(scene.world, scene, 0, 40);
+  const rc::WorldSnapshot snap = scene.world.snapshot();
+  rc::Random rng(0xc0ffee);
+  int refused = 0, taken = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    rc::WorldSnapshot bad = snap;
+    const auto at =
+        static_cast<std::size_t>(rng.uniform(0.0f, 1.0f) * static_cast<float>(bad.size() - 1));
+    bad[at] = static_cast<std::uint8_t>(bad[at] ^ (1u << (trial % 8)));
+    RichScene target(9);
+    try {
+      target.world.restore(bad);
+    } catch (const std::invalid_argument&) {
+      ++refused;
+      continue;
+    }
+    ++taken;
+    try {
+      for (int k = 0; k < 5; ++k)
+        target.world.step(kDt);
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "byte " << at << " flipped: " << e.what();
+    }
+  }
+  EXPECT_GT(refused, 0);
+  EXPECT_GT(taken, 0);
+}
+
+TEST(Snapshot, OtherFormatsAndWorldsAreRefused) {
+  rc::World w;
+  w.createShape(w.createBody(dynamicAt({0, 1})), rc::makeCircle({}, 0.5f));
+  rc::WorldSnapshot snap = w.snapshot();
+  auto message = [](rc::World& target, std::span<const std::uint8_t> bytes) {
+    try {
+      target.restore(bytes);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("taken");
+  };
+  rc::World same;
+  EXPECT_EQ(message(same, snap), "taken");
+  rc::WorldSnapshot notOne = snap;
+  notOne[0] ^= 0xFF;
+  EXPECT_NE(message(same, notOne).find("not a world snapshot"), std::string::npos);
+  rc::WorldSnapshot future = snap;
+  future[4] = 99;
+  EXPECT_NE(message(same, future).find("format 99"), std::string::npos);
+  rc::WorldDef moon;
+  moon.gravity = {0, -1.62f};
+  rc::World elsewhere(moon);
+  const std::string m = message(elsewhere, snap);
+  EXPECT_NE(m.find("gravity.y is -10"), std::string::npos) << m;
+  // The solver's width is not part of it: either width gives the same bits.
+  rc::WorldDef narrow;
+  narrow.maxSolverLanes = 4;
+  rc::World four(narrow);
+  EXPECT_EQ(message(four, snap), "taken");
+  rc::WorldSnapshot longer = snap;
+  longer.push_back(0);
+  EXPECT_NE(message(same, longer).find("bytes after the end"), std::string::npos);
+}
+
+}  // namespace

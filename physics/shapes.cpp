@@ -165,6 +165,22 @@ Polygon finishPolygon(const std::vector<Vec2>& hull, float radius) {
   return poly;
 }
 
+// The angle in [0, pi/2] whose sine and cosine are proportional to s >= 0 and c >= 0, in double
+// from +, -, *, / and sqrt alone (each correctly rounded by IEEE 754), so the same bits on every
+// platform, unlike libm's atan2. Four half-angle steps tan(a/2) = s / (c + |(s, c)|) bring the
+// angle below pi/32, where atan's odd series to t^17 leaves a relative error under 1e-19 (the
+// first omitted term, t^18 / 19 with t = tan(pi/32) < 0.0985); each step rounds by ~1e-16.
+double quarterTurnAngle(double s, double c) {
+  double t = s / (c + std::sqrt(s * s + c * c));  // tan(a/2), in [0, 1]
+  for (int i = 0; i < 3; ++i)
+    t /= 1.0 + std::sqrt(1.0 + t * t);  // tan(a/16) <= tan(pi/32)
+  const double t2 = t * t;
+  double series = 1.0 / 17.0;  // atan(t) / t = 1 - t^2/3 + t^4/5 - ..., by Horner
+  for (int k = 15; k >= 1; k -= 2)
+    series = 1.0 / k - t2 * series;
+  return 16.0 * t * series;
+}
+
 // Mass properties accumulated in double: they are computed once per shape, and double keeps the
 // parallel-axis shifts of far-off shapes exact enough for the 1e-5 relative oracle tolerance.
 struct MassSum {
@@ -411,33 +427,34 @@ MassData computeMass(const Polygon& s, float density) {
   }
   const double r = s.radius;
   if (r > 0.0) {
-    constexpr double kTwoPi = 6.28318530717958647692;
     // Edge normals in double from the edges themselves: the stored float normals tilt a sector
     // at a vertex where the outline turns by nearly pi (an interior angle of 1e-4 rad) by
-    // enough to move the centroid 4e-5 m (mass oracle, case 94509).
+    // enough to move the centroid 4e-5 m (mass oracle, case 94509). A plain root for the
+    // length: squares of float differences cannot overflow or underflow a double.
     auto normal = [&](int i) {
       D2 a = rel(i), b = rel(i + 1);
-      double ex = b.x - a.x, ey = b.y - a.y, l = std::hypot(ex, ey);
+      double ex = b.x - a.x, ey = b.y - a.y, l = std::sqrt(ex * ex + ey * ey);
       return D2{ey / l, -ex / l};
     };
     for (int i = 0; i < s.count; ++i) {
       D2 v1 = rel(i), v2 = rel(i + 1);
       D2 n = normal(i);
-      double len = std::hypot(v2.x - v1.x, v2.y - v1.y);
+      double ex = v2.x - v1.x, ey = v2.y - v1.y, len = std::sqrt(ex * ex + ey * ey);
       double a = len * r;
       sum.add(a, 0.5 * (v1.x + v2.x) + 0.5 * r * n.x, 0.5 * (v1.y + v2.y) + 0.5 * r * n.y,
               a * (len * len + r * r) / 12.0);
 
-      // Sector at vertex i+1, from this edge's normal to the next edge's normal.
+      // Sector at vertex i+1, from this edge's normal n to the next edge's normal m, halved by
+      // their bisector: half the turn and its sine, without libm.
       D2 m = normal(i + 1);
-      double theta = std::atan2(n.x * m.y - n.y * m.x, n.x * m.x + n.y * m.y);
-      if (theta < 0.0) theta += kTwoPi;
-      double half = 0.5 * theta;
-      double area = half * r * r;
       D2 bis{n.x + m.x, n.y + m.y};
-      double bl = std::hypot(bis.x, bis.y);
+      double bl = std::sqrt(bis.x * bis.x + bis.y * bis.y);
       bis = {bis.x / bl, bis.y / bl};
-      double d = 2.0 * r * std::sin(half) / (3.0 * half);  // sector centroid from its apex
+      double sinHalf = n.x * bis.y - n.y * bis.x;
+      double half = quarterTurnAngle(sinHalf, n.x * bis.x + n.y * bis.y);
+      if (!(half > 0.0)) continue;  // a straight corner has no sector
+      double area = half * r * r;
+      double d = 2.0 * r * sinHalf / (3.0 * half);  // sector centroid from its apex
       double aboutApex = 0.5 * half * r * r * r * r;
       sum.add(area, v2.x + d * bis.x, v2.y + d * bis.y, aboutApex - area * d * d);
     }

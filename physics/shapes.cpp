@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <limits>
 
 namespace rc {
 namespace {
@@ -36,59 +37,103 @@ void requireNonNegative(const char* shape, const char* field, float v) {
   if (v < 0.0f) fail(std::string(shape) + ": " + field + " must not be negative, got " + num(v));
 }
 
-// Andrew's monotone chain: deterministic, O(n log n), and with the strict turn test it drops
-// collinear points. Points are welded first so near-duplicates cannot make sliver edges.
-std::vector<Vec2> convexHull(std::span<const Vec2> input) {
-  constexpr float kWeld = 0.5f * kLinearSlop;
+// True when the outline a -> b -> c turns left at b by more than rounding: the sine of the turn
+// above 4 float epsilons. Below that a float evaluation of the same cross product (validate(),
+// the contact code) errs by up to 2.5 epsilons of |b - a| |c - b| and could see the corner turn
+// either way, so the corner counts as straight. Box2D 2.4.1 drops only exactly collinear points;
+// this drops only points collinear within rounding. In double, ~1e-16 relative.
+bool turnsLeft(Vec2 a, Vec2 b, Vec2 c) {
+  constexpr double kStraight = 4.0 * std::numeric_limits<float>::epsilon();
+  const double e1x = static_cast<double>(b.x) - a.x, e1y = static_cast<double>(b.y) - a.y;
+  const double e2x = static_cast<double>(c.x) - b.x, e2y = static_cast<double>(c.y) - b.y;
+  const double turn = e1x * e2y - e1y * e2x;
+  // Squared to do without a root: from float coordinates these neither overflow nor underflow.
+  return turn > 0.0 &&
+         turn * turn > kStraight * kStraight * (e1x * e1x + e1y * e1y) * (e2x * e2x + e2y * e2y);
+}
+
+// Removes the corners of a closed outline that do not turn left (straight within rounding,
+// repeated points, or bent the wrong way by rounding), each judged by its remaining neighbours.
+void dropStraightCorners(std::vector<Vec2>& ring) {
+  std::vector<Vec2> kept;
+  kept.reserve(ring.size());
+  for (Vec2 v : ring) {
+    while (kept.size() >= 2 && !turnsLeft(kept[kept.size() - 2], kept.back(), v))
+      kept.pop_back();
+    kept.push_back(v);
+  }
+  // Only the corners at the seam (the last and the first) are left to check; removing one of
+  // them changes only the other seam corner.
+  size_t first = 0, end = kept.size();
+  while (end - first >= 3) {
+    if (!turnsLeft(kept[end - 2], kept[end - 1], kept[first])) {
+      --end;
+    } else if (!turnsLeft(kept[end - 1], kept[first], kept[first + 1])) {
+      ++first;
+    } else {
+      break;
+    }
+  }
+  if (end - first < 3) first = end;  // nothing with an area is left
+  ring.assign(kept.begin() + static_cast<std::ptrdiff_t>(first),
+              kept.begin() + static_cast<std::ptrdiff_t>(end));
+}
+
+// Weld radius: Box2D's half slop for polygons over 25 cm, 1% of the size below (Box2D's ratio at
+// 25 cm), so a 1 mm polygon is scaled down, not welded to a point.
+double weldRadius(std::span<const Vec2> points) {
+  Vec2 lo = points.empty() ? Vec2{} : points[0], hi = lo;
+  for (Vec2 p : points) {
+    lo = min(lo, p);
+    hi = max(hi, p);
+  }
+  const double size = std::max(static_cast<double>(hi.x) - lo.x, static_cast<double>(hi.y) - lo.y);
+  return std::min(0.5 * kLinearSlop, 0.01 * size);
+}
+
+// Convex hull, counter-clockwise from the lowest-x (then lowest-y) vertex: Andrew's monotone
+// chain over the sorted points, O(n log n), keeping only corners that turn (turnsLeft). Then each
+// vertex closer than the weld radius to the one kept before it is dropped, so no edge is shorter
+// than that, and any corner this straightens goes too. Welding along the hull rather than the
+// whole cloud keeps a thin polygon's thickness; each welded point is within the radius of a
+// kept vertex.
+std::vector<Vec2> convexHull(std::span<const Vec2> input, double weld) {
   std::vector<Vec2> pts;
   pts.reserve(input.size());
-  for (Vec2 p : input) {
-    bool dup = false;
-    for (Vec2 q : pts) {
-      if (distanceSquared(p, q) < kWeld * kWeld) {
-        dup = true;
-        break;
-      }
-    }
-    if (!dup) pts.push_back(p);
-  }
-  if (pts.size() < 3) return pts;
+  for (Vec2 p : input)
+    pts.push_back({p.x + 0.0f, p.y + 0.0f});  // -0 as +0: equal points are the same bits
   std::sort(pts.begin(), pts.end(),
             [](Vec2 a, Vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+  if (pts.size() < 3) return {};
+
   std::vector<Vec2> hull(2 * pts.size());
   size_t k = 0;
-  auto turn = [](Vec2 o, Vec2 a, Vec2 b) { return cross(a - o, b - o); };
   for (size_t i = 0; i < pts.size(); ++i) {
-    while (k >= 2 && turn(hull[k - 2], hull[k - 1], pts[i]) <= 0.0f)
+    while (k >= 2 && !turnsLeft(hull[k - 2], hull[k - 1], pts[i]))
       --k;
     hull[k++] = pts[i];
   }
   for (size_t i = pts.size() - 1, lower = k + 1; i-- > 0;) {
-    while (k >= lower && turn(hull[k - 2], hull[k - 1], pts[i]) <= 0.0f)
+    while (k >= lower && !turnsLeft(hull[k - 2], hull[k - 1], pts[i]))
       --k;
     hull[k++] = pts[i];
   }
   hull.resize(k - 1);  // the last point repeats the first
 
-  // Drop nearly collinear vertices: a vertex closer than the slop to the line through its
-  // neighbours adds an edge too short for stable contact normals.
-  bool removed = true;
-  while (removed && hull.size() > 3) {
-    removed = false;
-    for (size_t i = 0; i < hull.size(); ++i) {
-      Vec2 a = hull[(i + hull.size() - 1) % hull.size()];
-      Vec2 b = hull[i];
-      Vec2 c = hull[(i + 1) % hull.size()];
-      Vec2 e = c - a;
-      float len = length(e);
-      if (len > 0.0f && cross(b - a, e) / len < 0.5f * kLinearSlop) {
-        hull.erase(hull.begin() + static_cast<std::ptrdiff_t>(i));
-        removed = true;
-        break;
-      }
-    }
+  auto near = [&](Vec2 a, Vec2 b) {
+    const double dx = static_cast<double>(b.x) - a.x, dy = static_cast<double>(b.y) - a.y;
+    return dx * dx + dy * dy < weld * weld;
+  };
+  std::vector<Vec2> welded;
+  welded.reserve(hull.size());
+  for (Vec2 v : hull) {
+    if (welded.empty() || !near(welded.back(), v)) welded.push_back(v);
   }
-  return hull;
+  while (welded.size() >= 2 && near(welded.back(), welded.front()))
+    welded.pop_back();
+  dropStraightCorners(welded);
+  return welded;
 }
 
 Vec2 polygonCentroid(const Vec2* v, int count) {
@@ -118,6 +163,22 @@ Polygon finishPolygon(const std::vector<Vec2>& hull, float radius) {
   }
   poly.centroid = polygonCentroid(poly.vertices, poly.count);
   return poly;
+}
+
+// The angle in [0, pi/2] whose sine and cosine are proportional to s >= 0 and c >= 0, in double
+// from +, -, *, / and sqrt alone (each correctly rounded by IEEE 754), so the same bits on every
+// platform, unlike libm's atan2. Four half-angle steps tan(a/2) = s / (c + |(s, c)|) bring the
+// angle below pi/32, where atan's odd series to t^17 leaves a relative error under 1e-19 (the
+// first omitted term, t^18 / 19 with t = tan(pi/32) < 0.0985); each step rounds by ~1e-16.
+double quarterTurnAngle(double s, double c) {
+  double t = s / (c + std::sqrt(s * s + c * c));  // tan(a/2), in [0, 1]
+  for (int i = 0; i < 3; ++i)
+    t /= 1.0 + std::sqrt(1.0 + t * t);  // tan(a/16) <= tan(pi/32)
+  const double t2 = t * t;
+  double series = 1.0 / 17.0;  // atan(t) / t = 1 - t^2/3 + t^4/5 - ..., by Horner
+  for (int k = 15; k >= 1; k -= 2)
+    series = 1.0 / k - t2 * series;
+  return 16.0 * t * series;
 }
 
 // Mass properties accumulated in double: they are computed once per shape, and double keeps the
@@ -199,7 +260,7 @@ Polygon makePolygon(std::span<const Vec2> points, float radius) {
     if (!isFinite(points[i]))
       fail("polygon: point " + std::to_string(i) + " is not finite " + vec(points[i]));
   }
-  std::vector<Vec2> hull = convexHull(points);
+  std::vector<Vec2> hull = convexHull(points, weldRadius(points));
   if (hull.size() < 3)
     fail("polygon: the " + std::to_string(points.size()) +
          " points have a degenerate hull (all coincident or collinear)");
@@ -366,33 +427,34 @@ MassData computeMass(const Polygon& s, float density) {
   }
   const double r = s.radius;
   if (r > 0.0) {
-    constexpr double kTwoPi = 6.28318530717958647692;
     // Edge normals in double from the edges themselves: the stored float normals tilt a sector
     // at a vertex where the outline turns by nearly pi (an interior angle of 1e-4 rad) by
-    // enough to move the centroid 4e-5 m (mass oracle, case 94509).
+    // enough to move the centroid 4e-5 m (mass oracle, case 94509). A plain root for the
+    // length: squares of float differences cannot overflow or underflow a double.
     auto normal = [&](int i) {
       D2 a = rel(i), b = rel(i + 1);
-      double ex = b.x - a.x, ey = b.y - a.y, l = std::hypot(ex, ey);
+      double ex = b.x - a.x, ey = b.y - a.y, l = std::sqrt(ex * ex + ey * ey);
       return D2{ey / l, -ex / l};
     };
     for (int i = 0; i < s.count; ++i) {
       D2 v1 = rel(i), v2 = rel(i + 1);
       D2 n = normal(i);
-      double len = std::hypot(v2.x - v1.x, v2.y - v1.y);
+      double ex = v2.x - v1.x, ey = v2.y - v1.y, len = std::sqrt(ex * ex + ey * ey);
       double a = len * r;
       sum.add(a, 0.5 * (v1.x + v2.x) + 0.5 * r * n.x, 0.5 * (v1.y + v2.y) + 0.5 * r * n.y,
               a * (len * len + r * r) / 12.0);
 
-      // Sector at vertex i+1, from this edge's normal to the next edge's normal.
+      // Sector at vertex i+1, from this edge's normal n to the next edge's normal m, halved by
+      // their bisector: half the turn and its sine, without libm.
       D2 m = normal(i + 1);
-      double theta = std::atan2(n.x * m.y - n.y * m.x, n.x * m.x + n.y * m.y);
-      if (theta < 0.0) theta += kTwoPi;
-      double half = 0.5 * theta;
-      double area = half * r * r;
       D2 bis{n.x + m.x, n.y + m.y};
-      double bl = std::hypot(bis.x, bis.y);
+      double bl = std::sqrt(bis.x * bis.x + bis.y * bis.y);
       bis = {bis.x / bl, bis.y / bl};
-      double d = 2.0 * r * std::sin(half) / (3.0 * half);  // sector centroid from its apex
+      double sinHalf = n.x * bis.y - n.y * bis.x;
+      double half = quarterTurnAngle(sinHalf, n.x * bis.x + n.y * bis.y);
+      if (!(half > 0.0)) continue;  // a straight corner has no sector
+      double area = half * r * r;
+      double d = 2.0 * r * sinHalf / (3.0 * half);  // sector centroid from its apex
       double aboutApex = 0.5 * half * r * r * r * r;
       sum.add(area, v2.x + d * bis.x, v2.y + d * bis.y, aboutApex - area * d * d);
     }

@@ -91,9 +91,10 @@ Circle makeCircle(Vec2 center, float radius);
 Box makeBox(float halfWidth, float halfHeight, Vec2 center = {});
 Capsule makeCapsule(Vec2 center1, Vec2 center2, float radius);
 Segment makeSegment(Vec2 point1, Vec2 point2);
-// Convex hull of the points (duplicates closer than kLinearSlop/2 welded, collinear points
-// dropped). Throws when the hull is degenerate (fewer than 3 vertices or no area) or would need
-// more than kMaxPolygonVertices vertices.
+// Convex hull of the points, in O(n log n): hull vertices closer than kLinearSlop/2 (or 1% of
+// the points' extent, when smaller) welded, points collinear within float rounding dropped.
+// Throws when the hull is degenerate (fewer than 3 vertices or no area) or would need more than
+// kMaxPolygonVertices vertices (the message says how many).
 Polygon makePolygon(std::span<const Vec2> points, float radius = 0.0f);
 Polygon makeOrientedBox(float halfWidth, float halfHeight, Vec2 center = {}, float angle = 0.0f,
                         float radius = 0.0f);

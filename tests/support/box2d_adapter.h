@@ -46,6 +46,17 @@ struct Box2DShape {
   }
 };
 
+// True when b2PolygonShape::Set would weld two of these vertices (closer than half of
+// b2_linearSlop): Box2D would build another polygon or, left with fewer than 3 points, assert.
+// Our hull welds polygons under 25 cm at 1% of their size instead (shapes.cpp, weldRadius).
+inline bool box2dWouldWeld(const Vec2* v, int count) {
+  constexpr float kWeld = 0.5f * b2_linearSlop;
+  for (int i = 0; i < count; ++i)
+    for (int j = i + 1; j < count; ++j)
+      if (distanceSquared(v[i], v[j]) < kWeld * kWeld) return true;
+  return false;
+}
+
 // Returns false for shapes Box2D 2.4.1 has no type for (capsules), for a polygon whose hull
 // Box2D builds with a different vertex count (nearly collinear points), and for slivers of less
 // than 1e-5 m^2.
@@ -69,7 +80,7 @@ inline bool toB2(const Shape& s, Box2DShape* o) {
       for (int i = 0; i < s.polygon.count; ++i)
         twiceArea +=
             cross(s.polygon.vertices[i], s.polygon.vertices[nextIndex(i, s.polygon.count)]);
-      if (twiceArea < 2e-5f) return false;
+      if (twiceArea < 2e-5f || box2dWouldWeld(s.polygon.vertices, s.polygon.count)) return false;
       o->type = b2Shape::e_polygon;
       b2Vec2 v[b2_maxPolygonVertices];
       for (int i = 0; i < s.polygon.count; ++i)

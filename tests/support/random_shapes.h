@@ -1,6 +1,7 @@
 // Seeded random shapes and transforms shared by the property, brute-force and oracle tests.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -8,6 +9,7 @@
 
 #include "physics/random.h"
 #include "physics/shapes.h"
+#include "support/reference_geometry.h"
 
 namespace rc::testing {
 
@@ -101,6 +103,70 @@ inline Shape randomShape(Random& rng, Kind kind) {
       return randomChainLink(rng, true);
   }
   return makeCircle({}, 1.0f);
+}
+
+// A convex polygon as the float points given to rc::makePolygon, and the exact polygon they stand
+// for. Regular: n = 3..8 vertices on a circle of radius R at a random rotation. Irregular: n
+// points at random angles at least 0.15 rad apart (every edge longer than the 1% weld) on an
+// ellipse of semi-axes R and 0.3 R to R, turned at random: all are vertices of their hull, as
+// points on a strictly convex curve. Centred within 3 R of the origin (each coordinate), so
+// that rounding a vertex to float moves each coordinate by at most 2^-24 x 4 R. `interior` points
+// strictly inside join the cloud, and the cloud is shuffled.
+struct TestPolygon {
+  ExactPolygon exact;
+  std::vector<Vec2> points;  // the float vertices, then the interior points, shuffled
+  long double centerX = 0, centerY = 0;
+};
+inline TestPolygon randomConvexPolygon(Random& rng, int n, long double radius, bool regular,
+                                       int interior = 0) {
+  constexpr long double kTwoPi = 6.283185307179586476925286766559L;
+  std::vector<long double> angles(static_cast<size_t>(n));
+  if (regular) {
+    const long double turn = kTwoPi * rng.uniformDouble();
+    for (int k = 0; k < n; ++k)
+      angles[static_cast<size_t>(k)] = turn + kTwoPi * k / n;
+  } else {
+    for (;;) {
+      for (long double& a : angles)
+        a = kTwoPi * rng.uniformDouble();
+      std::sort(angles.begin(), angles.end());
+      bool apart = angles.front() + kTwoPi - angles.back() >= 0.15L;
+      for (size_t k = 1; k < angles.size(); ++k)
+        apart = apart && angles[k] - angles[k - 1] >= 0.15L;
+      if (apart) break;
+    }
+  }
+  const long double minor = regular ? radius : radius * (0.3L + 0.7L * rng.uniformDouble());
+  const long double spin = regular ? 0.0L : kTwoPi * rng.uniformDouble();
+  const long double cs = std::cos(spin), sn = std::sin(spin);
+  TestPolygon t;
+  t.centerX = radius * (6 * rng.uniformDouble() - 3);
+  t.centerY = radius * (6 * rng.uniformDouble() - 3);
+  t.exact.count = n;
+  for (int k = 0; k < n; ++k) {
+    const long double ex = radius * std::cos(angles[static_cast<size_t>(k)]),
+                      ey = minor * std::sin(angles[static_cast<size_t>(k)]);
+    t.exact.x[k] = t.centerX + cs * ex - sn * ey;
+    t.exact.y[k] = t.centerY + sn * ex + cs * ey;
+    t.points.push_back({static_cast<float>(t.exact.x[k]), static_cast<float>(t.exact.y[k])});
+  }
+  // Halfway between the vertices' mean and a random mix of them: well inside.
+  for (int i = 0; i < interior; ++i) {
+    long double mx = 0, my = 0, wx = 0, wy = 0, wsum = 0;
+    for (int k = 0; k < n; ++k) {
+      const long double w = 0.1L + rng.uniformDouble();
+      mx += t.exact.x[k] / n;
+      my += t.exact.y[k] / n;
+      wx += w * t.exact.x[k];
+      wy += w * t.exact.y[k];
+      wsum += w;
+    }
+    t.points.push_back(
+        {static_cast<float>((mx + wx / wsum) / 2), static_cast<float>((my + wy / wsum) / 2)});
+  }
+  for (size_t i = t.points.size(); i > 1; --i)
+    std::swap(t.points[i - 1], t.points[rng.below(static_cast<std::uint32_t>(i))]);
+  return t;
 }
 
 inline Transform randomTransform(Random& rng, Vec2 around, float spread, bool rotate = true) {

@@ -173,6 +173,80 @@ inline double signedDistance(const Core& a, const Core& b) {
   return -depth - a.radius - b.radius;
 }
 
+// A convex polygon in long double, counter-clockwise: the exact shape a test means, before its
+// vertices are rounded to float for the factory.
+struct ExactPolygon {
+  long double x[kMaxPolygonVertices] = {};
+  long double y[kMaxPolygonVertices] = {};
+  int count = 0;
+};
+
+// Area, centroid and polar moment about the centroid, by the shoelace sums in long double about
+// the first vertex (so a small polygon far from the origin keeps its digits).
+struct ExactMass {
+  long double area = 0, cx = 0, cy = 0, inertia = 0;
+};
+inline ExactMass exactMass(const ExactPolygon& p) {
+  const long double ox = p.x[0], oy = p.y[0];
+  long double a2 = 0, sx = 0, sy = 0, j = 0;  // twice the area, 6 x first moments, 12 x polar
+  for (int k = 0; k < p.count; ++k) {
+    const int l = (k + 1) % p.count;
+    const long double px = p.x[k] - ox, py = p.y[k] - oy, qx = p.x[l] - ox, qy = p.y[l] - oy;
+    const long double c = px * qy - qx * py;
+    a2 += c;
+    sx += c * (px + qx);
+    sy += c * (py + qy);
+    j += c * (px * px + px * qx + qx * qx + py * py + py * qy + qy * qy);
+  }
+  ExactMass m;
+  m.area = a2 / 2;
+  const long double x = sx / (3 * a2), y = sy / (3 * a2);
+  m.inertia = j / 12 - m.area * (x * x + y * y);
+  m.cx = ox + x;
+  m.cy = oy + y;
+  return m;
+}
+
+inline long double perimeter(const ExactPolygon& p) {
+  long double sum = 0;
+  for (int k = 0; k < p.count; ++k) {
+    const int l = (k + 1) % p.count;
+    sum += std::hypot(p.x[l] - p.x[k], p.y[l] - p.y[k]);
+  }
+  return sum;
+}
+
+// Where the ray o + t d, t in [0, tMax], enters the polygon (origin outside): the latest entry
+// over the edges' half-planes (Cyrus-Beck) in long double, and the edge entered there.
+struct ExactEntry {
+  bool hit = false;
+  long double t = 0;
+  int edge = -1;
+};
+inline ExactEntry exactEntry(const ExactPolygon& p, long double ox, long double oy, long double dx,
+                             long double dy, long double tMax) {
+  long double lower = 0, upper = tMax;
+  int edge = -1;
+  for (int k = 0; k < p.count; ++k) {
+    const int l = (k + 1) % p.count;
+    const long double nx = p.y[l] - p.y[k], ny = p.x[k] - p.x[l];  // outward, not unit
+    const long double num = nx * (p.x[k] - ox) + ny * (p.y[k] - oy), den = nx * dx + ny * dy;
+    if (den == 0) {
+      if (num < 0) return {};
+    } else if (den < 0) {
+      if (num / den > lower) {
+        lower = num / den;
+        edge = k;
+      }
+    } else {
+      upper = std::min(upper, num / den);
+    }
+    if (upper < lower) return {};
+  }
+  if (edge < 0) return {};
+  return {true, lower, edge};
+}
+
 // Support of a placed shape along direction n: max over its core points (rc::makeProxy) of p.n,
 // plus the radius.
 inline float support(const Shape& s, const Transform& xf, Vec2 n) {

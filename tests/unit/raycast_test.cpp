@@ -1186,4 +1186,143 @@ TEST(RayCastRobustness, NanInputDoesNotCrash) {
   EXPECT_EQ(calls, 48);
 }
 
+// ---------------------------------------------------------------------------------------------
+// Polygons from 1 mm to 100 m: a ray answers for the polygon that was asked for.
+//
+// The polygons of shapes_test.cpp (rc::testing::randomConvexPolygon: regular and irregular, 3 to
+// 8 vertices, circumradius R from 1 mm to 100 m, centred within 3 R of the origin) built from
+// their float vertices, cast in their own frame and held to the exact polygon's entry in long
+// double (rc::testing::exactEntry) for the same float origin and translation. Rays start 2 R to
+// 4 R from the centre and aim at a point within half the inradius of the vertices' mean (a hit,
+// never grazing), or pass 1.05 R to 2 R from the centre (a miss).
+// Tolerance on the distance travelled to the hit: rounding the vertices to float moves each by
+// at most delta = sqrt(2) u M (u = 2^-24, M the largest coordinate), so the entered edge by at
+// most delta, and the entry by delta / s along the ray (s the cosine of the incidence); the
+// cast's float arithmetic (v - o and the float normal's direction, a few roundings each) adds at
+// most 8 u (L + t |d|) / s, L = |o - c| + R bounding |v - o|; the fraction's own rounding 2 u t
+// |d|. The normal is the exact edge's to 2 delta / (edge length) + 4 u, checked where the entry is
+// farther than 100 tolerances from the edge's ends (near a corner either edge's is right).
+TEST(RayCastPolygon, PolygonsFrom1mmTo100mAgreeWithTheExactCast) {
+  constexpr long double kU = 0x1p-24L, kTwoPi = 6.283185307179586476925286766559L;
+  rc::Random rng(2040);
+  int failures = 0, hits = 0, misses = 0, normals = 0, cases = 0;
+  double worst = 0.0, worstNormal = 0.0;
+  std::string first;
+  auto fail = [&](const std::string& what) {
+    if (failures++ == 0) first = what;
+  };
+  char buf[320];
+  for (int n = 3; n <= rc::kMaxPolygonVertices; ++n) {
+    for (int i = 0; i < 200; ++i, ++cases) {
+      const long double R =
+          i < 4 ? (i < 2 ? 1e-3L : 1e2L) : 1e-3L * std::pow(10.0L, 5.0L * rng.uniformDouble());
+      const rc::testing::TestPolygon t = rc::testing::randomConvexPolygon(rng, n, R, i % 2 == 0);
+      const rc::testing::ExactPolygon& e = t.exact;
+      rc::Polygon poly;
+      try {
+        poly = rc::makePolygon(t.points);
+      } catch (const rc::InvalidShape& ex) {
+        std::snprintf(buf, sizeof buf, "n %d R %Lg: %s", n, R, ex.what());
+        fail(buf);
+        continue;
+      }
+      long double mx = 0, my = 0, far = 0;
+      for (int k = 0; k < n; ++k) {
+        mx += e.x[k] / n;
+        my += e.y[k] / n;
+        far = std::max({far, std::fabs(e.x[k]), std::fabs(e.y[k])});
+      }
+      long double inradius = std::numeric_limits<long double>::infinity();
+      for (int k = 0; k < n; ++k) {
+        const int l = (k + 1) % n;
+        const long double ex = e.x[l] - e.x[k], ey = e.y[l] - e.y[k];
+        inradius =
+            std::min(inradius, ((mx - e.x[k]) * ey - (my - e.y[k]) * ex) / -std::hypot(ex, ey));
+      }
+      const long double delta = std::sqrt(2.0L) * kU * far;
+      for (int r = 0; r < 20; ++r) {
+        const long double beta = kTwoPi * rng.uniformDouble(), gamma = kTwoPi * rng.uniformDouble();
+        const bool aimed = r < 15;
+        Vec2 o, d;
+        if (aimed) {
+          const long double away = R * (2 + 2 * rng.uniformDouble());
+          const long double off = 0.5L * inradius * std::sqrt(rng.uniformDouble());
+          const long double tx = mx + off * std::cos(gamma), ty = my + off * std::sin(gamma);
+          o = {static_cast<float>(t.centerX + away * std::cos(beta)),
+               static_cast<float>(t.centerY + away * std::sin(beta))};
+          const long double reach = 1.2L + 0.8L * rng.uniformDouble();
+          d = {static_cast<float>((tx - o.x) * reach), static_cast<float>((ty - o.y) * reach)};
+        } else {
+          const long double h = R * (1.05L + 0.95L * rng.uniformDouble());
+          const long double ax = std::cos(gamma), ay = std::sin(gamma);
+          o = {static_cast<float>(t.centerX - h * ay - 3 * R * ax),
+               static_cast<float>(t.centerY + h * ax - 3 * R * ay)};
+          d = {static_cast<float>(6 * R * ax), static_cast<float>(6 * R * ay)};
+        }
+        const long double ox = o.x, oy = o.y, dx = d.x, dy = d.y;
+        const rc::testing::ExactEntry ex = rc::testing::exactEntry(e, ox, oy, dx, dy, 1);
+        const CastOutput out = rc::rayCast(poly, RayCastInput{o, d, 1.0f});
+        if (!aimed) {
+          ++misses;
+          if (out.hit || ex.hit) {
+            std::snprintf(buf, sizeof buf, "n %d R %Lg ray %d: a miss was a hit", n, R, r);
+            fail(buf);
+          }
+          continue;
+        }
+        if (!ex.hit || !out.hit) {
+          std::snprintf(buf, sizeof buf, "n %d R %Lg ray %d: hit %d, exact %d", n, R, r, out.hit,
+                        ex.hit);
+          fail(buf);
+          continue;
+        }
+        ++hits;
+        const int k = ex.edge, l = (k + 1) % n;
+        const long double edge = std::hypot(e.x[l] - e.x[k], e.y[l] - e.y[k]);
+        const long double nx = (e.y[l] - e.y[k]) / edge, ny = (e.x[k] - e.x[l]) / edge;
+        const long double len = std::hypot(dx, dy), travel = ex.t * len;
+        const long double s = std::fabs(nx * dx + ny * dy) / len;
+        const long double L = std::hypot(ox - t.centerX, oy - t.centerY) + R;
+        const long double tol = (delta + 8 * kU * (L + travel)) / s + 2 * kU * travel;
+        const long double px = ox + ex.t * dx, py = oy + ex.t * dy;
+        const long double along = std::fabs(out.fraction - ex.t) * len;
+        const long double point = std::hypot(out.point.x - px, out.point.y - py);
+        const long double tolPoint =
+            tol + 2 * std::sqrt(2.0L) * kU * (std::max(std::fabs(ox), std::fabs(oy)) + travel);
+        worst = std::max(worst, static_cast<double>(std::max(along / tol, point / tolPoint)));
+        if (along > tol || point > tolPoint) {
+          std::snprintf(buf, sizeof buf,
+                        "n %d R %Lg ray %d: fraction %.9g, exact %.12Lg (%.3Lg m apart, tolerance "
+                        "%.3Lg); point %.3Lg m apart (%.3Lg)",
+                        n, R, r, static_cast<double>(out.fraction), ex.t, along, tol, point,
+                        tolPoint);
+          fail(buf);
+          continue;
+        }
+        const long double fromEnds =
+            std::min(std::hypot(px - e.x[k], py - e.y[k]), std::hypot(px - e.x[l], py - e.y[l]));
+        if (fromEnds < 100 * tol) continue;
+        ++normals;
+        const long double tilt = std::hypot(out.normal.x - nx, out.normal.y - ny);
+        worstNormal =
+            std::max(worstNormal, static_cast<double>(tilt / (2 * delta / edge + 4 * kU)));
+        if (tilt > 2 * delta / edge + 4 * kU) {
+          std::snprintf(buf, sizeof buf, "n %d R %Lg ray %d: normal %.3Lg off (tolerance %.3Lg)", n,
+                        R, r, tilt, 2 * delta / edge + 4 * kU);
+          fail(buf);
+        }
+      }
+    }
+  }
+  EXPECT_EQ(failures, 0) << failures << " failures over " << cases
+                         << " polygons; the first: " << first;
+  EXPECT_GT(hits, cases * 14);
+  EXPECT_EQ(misses, cases * 5);
+  EXPECT_GT(normals, cases * 13);
+  std::snprintf(buf, sizeof buf, "%.3g", worst);
+  RecordProperty("worst_hit_error_over_tolerance", buf);
+  std::snprintf(buf, sizeof buf, "%.3g", worstNormal);
+  RecordProperty("worst_normal_error_over_tolerance", buf);
+}
+
 }  // namespace

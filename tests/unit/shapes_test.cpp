@@ -2,12 +2,17 @@
 // closed forms and a Monte Carlo integral (an independent check for rounded polygons).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "physics/random.h"
 #include "physics/shapes.h"
+#include "support/random_shapes.h"
+#include "support/reference_geometry.h"
 
 namespace {
 
@@ -229,6 +234,277 @@ TEST(Shapes, ContainsPointOnHandWorkedCases) {
   EXPECT_FALSE(rc::containsPoint(cap, {}, {2.8f, 0.8f}));
   rc::Shape seg = rc::makeSegment({0, 0}, {1, 0});
   EXPECT_FALSE(rc::containsPoint(seg, {}, {0.5f, 0}));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Polygons from 1 mm to 100 m keep their shape.
+//
+// Each polygon is built from float points rounded from an exact polygon in long double
+// (rc::testing::randomConvexPolygon: regular n-gons, n = 3..8, and irregular ones on ellipses, at
+// random rotations, centred within 3 R of the origin, circumradius R from 1 mm to 100 m), and is
+// held to that exact polygon. The tolerances are what rounding the vertices to float allows, to
+// first order: each coordinate moves by at most u M (u = 2^-24, M the largest coordinate), so
+// each vertex by delta = sqrt(2) u M and the outline by at most delta. That changes the area by
+// at most delta P (P the perimeter), the first moment about the centroid by delta P rho (rho the
+// farthest point of the outline from the centroid), so the centroid by delta P rho / A, and the
+// polar moment by delta P rho^2. On top, the float results' own rounding: 2u relative, 2u M for
+// the centre. Here that is 1e-6 to 1e-5 relative (M <= 4 R).
+
+constexpr long double kU = 0x1p-24L;
+constexpr long double kPiL = 3.141592653589793238462643383279503L;
+
+// Circumradius 1 mm and 100 m first, then log-uniform between.
+long double sizeOfCase(rc::Random& rng, int i) {
+  if (i < 2) return i == 0 ? 1e-3L : 1e2L;
+  return 1e-3L * std::pow(10.0L, 5.0L * rng.uniformDouble());
+}
+
+long double largestCoordinate(const rc::testing::ExactPolygon& p) {
+  long double m = 0;
+  for (int k = 0; k < p.count; ++k)
+    m = std::max({m, std::fabs(p.x[k]), std::fabs(p.y[k])});
+  return m;
+}
+
+std::string describe(const rc::testing::TestPolygon& t) {
+  std::string out;
+  char buf[64];
+  for (int k = 0; k < t.exact.count; ++k) {
+    std::snprintf(buf, sizeof buf, " (%.12Lg, %.12Lg)", t.exact.x[k], t.exact.y[k]);
+    out += buf;
+  }
+  return out;
+}
+
+// The exact answer for one polygon, and what float vertices allow around it.
+struct MassReference {
+  long double area, cx, cy, inertia;
+  long double perimeter, rho;  // of the outline, rho from the centroid
+};
+
+// Failures counted and the first described: a broken hull reports once, not once per polygon.
+struct Failures {
+  int count = 0;
+  std::string first;
+  double worstArea = 0, worstCentre = 0, worstInertia = 0;  // error over tolerance
+  void fail(const std::string& what) {
+    if (count++ == 0) first = what;
+  }
+};
+
+// Builds the polygon, expects its vertices to be exactly the float vertices of the exact polygon
+// in counter-clockwise order, and its mass within the rounding bounds of the reference.
+void checkPolygon(const rc::testing::TestPolygon& t, float radius, const MassReference& ref,
+                  Failures& f) {
+  const rc::testing::ExactPolygon& e = t.exact;
+  rc::Polygon p;
+  try {
+    p = rc::makePolygon(t.points, radius);
+  } catch (const rc::InvalidShape& ex) {
+    f.fail(std::string("refused: ") + ex.what() + describe(t));
+    return;
+  }
+  if (p.count != e.count) {
+    f.fail("hull has " + std::to_string(p.count) + " vertices, not " + std::to_string(e.count) +
+           ":" + describe(t));
+    return;
+  }
+  const Vec2 first{static_cast<float>(e.x[0]), static_cast<float>(e.y[0])};
+  int start = 0;  // the stored vertex that is exact vertex 0
+  while (start < p.count && !(p.vertices[start] == first))
+    ++start;
+  for (int k = 0; k < e.count; ++k) {
+    Vec2 want{static_cast<float>(e.x[k]), static_cast<float>(e.y[k])};
+    if (start == p.count || !(p.vertices[(start + k) % p.count] == want)) {
+      f.fail("hull is not the float vertices in order:" + describe(t));
+      return;
+    }
+  }
+  try {
+    rc::validate(p);
+  } catch (const rc::InvalidShape& ex) {
+    f.fail(std::string("invalid: ") + ex.what() + describe(t));
+    return;
+  }
+
+  const long double delta = std::sqrt(2.0L) * kU * largestCoordinate(e);
+  const long double tolArea = delta * ref.perimeter / ref.area + 2 * kU;
+  const long double tolCentre =
+      delta * ref.perimeter * ref.rho / ref.area + 2 * kU * largestCoordinate(e);
+  const long double tolInertia = delta * ref.perimeter * ref.rho * ref.rho / ref.inertia + 2 * kU;
+  rc::MassData md = rc::computeMass(p, 1.0f);
+  const long double area = std::fabs(md.area - ref.area) / ref.area;
+  const long double centre = std::hypot(md.center.x - ref.cx, md.center.y - ref.cy);
+  const long double inertia = std::fabs(md.inertia - ref.inertia) / ref.inertia;
+  f.worstArea = std::max(f.worstArea, static_cast<double>(area / tolArea));
+  f.worstCentre = std::max(f.worstCentre, static_cast<double>(centre / tolCentre));
+  f.worstInertia = std::max(f.worstInertia, static_cast<double>(inertia / tolInertia));
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "area off by %.3Lg relative (tolerance %.3Lg), centre by %.3Lg m (%.3Lg), inertia "
+                "by %.3Lg relative (%.3Lg), radius %g:",
+                area, tolArea, centre, tolCentre, inertia, tolInertia, static_cast<double>(radius));
+  if (area > tolArea || centre > tolCentre || inertia > tolInertia) f.fail(buf + describe(t));
+}
+
+void expectNoFailures(const Failures& f, int cases) {
+  EXPECT_EQ(f.count, 0) << f.count << " of " << cases << " polygons; the first: " << f.first;
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", f.worstArea);
+  ::testing::Test::RecordProperty("worst_area_over_tolerance", buf);
+  std::snprintf(buf, sizeof buf, "%.3g", f.worstCentre);
+  ::testing::Test::RecordProperty("worst_centre_over_tolerance", buf);
+  std::snprintf(buf, sizeof buf, "%.3g", f.worstInertia);
+  ::testing::Test::RecordProperty("worst_inertia_over_tolerance", buf);
+}
+
+// Regular n-gons against their closed forms: area n/2 R^2 sin(2 pi/n), polar moment about the
+// centre A R^2 (2 + cos(2 pi/n)) / 6, centroid the centre. Rounded by r, the outline gains a
+// rectangle r deep on each edge (length L = 2 R sin(pi/n), centroid a + r/2 from the centre with
+// a = R cos(pi/n) the apothem) and a sector of angle 2 pi/n at each vertex (on the line from the
+// centre through the vertex, its centroid 4 r sin(pi/n) / (3 (2 pi/n)) beyond it).
+MassReference regularReference(const rc::testing::TestPolygon& t, long double R, long double r) {
+  const int n = t.exact.count;
+  const long double theta = 2 * kPiL / n, a = R * std::cos(kPiL / n),
+                    L = 2 * R * std::sin(kPiL / n);
+  MassReference ref;
+  ref.area = n / 2.0L * R * R * std::sin(theta);
+  ref.inertia = ref.area * R * R * (2 + std::cos(theta)) / 6;
+  ref.cx = t.centerX;
+  ref.cy = t.centerY;
+  ref.perimeter = n * L;
+  ref.rho = R;
+  if (r > 0) {
+    const long double rect = L * r, sector = theta * r * r / 2;
+    const long double d = 4 * r * std::sin(theta / 2) / (3 * theta);
+    ref.inertia += n * (rect * (L * L + r * r) / 12 + rect * (a + r / 2) * (a + r / 2));
+    ref.inertia += n * (theta * r * r * r * r / 4 - sector * d * d + sector * (R + d) * (R + d));
+    ref.area += n * (rect + sector);
+    ref.perimeter += 2 * kPiL * r;
+    ref.rho += r;
+  }
+  return ref;
+}
+
+TEST(PolygonShape, RegularPolygonsFrom1mmTo100mKeepTheirShapeAndMass) {
+  rc::Random rng(20);
+  Failures f;
+  int cases = 0;
+  for (int n = 3; n <= rc::kMaxPolygonVertices; ++n) {
+    for (int i = 0; i < 200; ++i, ++cases) {
+      const long double R = sizeOfCase(rng, i);
+      rc::testing::TestPolygon t = rc::testing::randomConvexPolygon(rng, n, R, true, 5);
+      checkPolygon(t, 0.0f, regularReference(t, R, 0), f);
+    }
+  }
+  expectNoFailures(f, cases);
+}
+
+// The same rounded by 1% to 100% of R: exercises the sectors' angles (shapes.cpp computes them
+// without libm) against the closed form.
+TEST(PolygonShape, RoundedRegularPolygonsMatchTheClosedForm) {
+  rc::Random rng(21);
+  Failures f;
+  int cases = 0;
+  for (int n = 3; n <= rc::kMaxPolygonVertices; ++n) {
+    for (int i = 0; i < 200; ++i, ++cases) {
+      const long double R = sizeOfCase(rng, i);
+      rc::testing::TestPolygon t = rc::testing::randomConvexPolygon(rng, n, R, true, 5);
+      const float r = static_cast<float>(R * std::pow(10.0L, -2.0L * rng.uniformDouble()));
+      checkPolygon(t, r, regularReference(t, R, r), f);
+    }
+  }
+  expectNoFailures(f, cases);
+}
+
+// Irregular convex polygons against the shoelace sums of the exact vertices.
+TEST(PolygonShape, IrregularPolygonsFrom1mmTo100mKeepTheirShapeAndMass) {
+  rc::Random rng(22);
+  Failures f;
+  int cases = 0;
+  for (int n = 3; n <= rc::kMaxPolygonVertices; ++n) {
+    for (int i = 0; i < 200; ++i, ++cases) {
+      const long double R = sizeOfCase(rng, i);
+      rc::testing::TestPolygon t = rc::testing::randomConvexPolygon(rng, n, R, false, 5);
+      rc::testing::ExactMass m = rc::testing::exactMass(t.exact);
+      MassReference ref{m.area, m.cx, m.cy, m.inertia, rc::testing::perimeter(t.exact), 0};
+      for (int k = 0; k < n; ++k)
+        ref.rho = std::max(ref.rho, std::hypot(t.exact.x[k] - m.cx, t.exact.y[k] - m.cy));
+      checkPolygon(t, 0.0f, ref, f);
+    }
+  }
+  expectNoFailures(f, cases);
+}
+
+// The hull drops a vertex only when it is collinear within rounding: a unit square with a fifth
+// vertex pushed out of its bottom edge by 1e-5 m (a turn of 4e-5 rad) keeps it; by 1e-8 m (4e-8
+// rad, under the 4.8e-7 of 4 float epsilons) it is straight and dropped.
+TEST(PolygonShape, HullDropsOnlyCornersStraightWithinRounding) {
+  auto square = [](float bulge) {
+    return rc::makePolygon(std::vector<Vec2>{{0, 0}, {0.5f, -bulge}, {1, 0}, {1, 1}, {0, 1}});
+  };
+  EXPECT_EQ(square(1e-5f).count, 5);
+  EXPECT_EQ(square(1e-8f).count, 4);
+  EXPECT_EQ(square(0.0f).count, 4);
+  EXPECT_EQ(square(-1e-5f).count, 4);  // pushed in: not on the hull
+}
+
+// Near-duplicates are welded, at Box2D's half slop for polygons over 25 cm and at 1% of the size
+// below: a 1 mm triangle keeps its corners, and its corners given twice, 1e-7 m apart, do not
+// make sliver edges. Welding runs along the hull: a diamond 1 m long and 2 mm thick keeps its
+// thickness although its two side corners are closer than the weld.
+TEST(PolygonShape, WeldsNearDuplicatesRelativeToTheSize) {
+  std::vector<Vec2> tiny = {{0, 0}, {1e-3f, 0}, {0, 1e-3f}};
+  EXPECT_EQ(rc::makePolygon(tiny).count, 3);
+  std::vector<Vec2> doubled = tiny;
+  for (Vec2 v : tiny)
+    doubled.push_back(v + Vec2{1e-7f, 5e-8f});
+  rc::Polygon p = rc::makePolygon(doubled);
+  EXPECT_EQ(p.count, 3);
+  EXPECT_NO_THROW(rc::validate(p));
+  EXPECT_NEAR(rc::computeMass(p, 1.0f).area, 0.5e-6, 0.5e-6 * 2e-3);
+  // At 1 m, 2 mm apart is within Box2D's weld.
+  EXPECT_EQ(rc::makePolygon(std::vector<Vec2>{{0, 0}, {1, 0}, {1, 0.002f}, {0, 1}}).count, 3);
+  rc::Polygon diamond =
+      rc::makePolygon(std::vector<Vec2>{{0, 0}, {0.5f, -0.001f}, {1, 0}, {0.5f, 0.001f}});
+  EXPECT_EQ(diamond.count, 4);
+  EXPECT_NEAR(rc::computeMass(diamond, 1.0f).area, 0.001, 1e-9);
+}
+
+// A point set whose hull has more vertices than a polygon may have is refused, with the count,
+// however many points it has: 200,000 points on a circle of 1 m (their hull, welded at 2.5 mm,
+// has about 2,400 vertices; it must not be simplified into a sliver). The hull sorts once and
+// walks the points a few times, so this takes milliseconds (before, the weld compared every pair).
+TEST(PolygonShape, ManyPointsOnACircleAreRefusedWithTheHullsVertexCount) {
+  std::vector<Vec2> circle;
+  constexpr int kPoints = 200000;
+  for (int i = 0; i < kPoints; ++i) {
+    const double a = 2.0 * 3.14159265358979323846 * i / kPoints;
+    circle.push_back({static_cast<float>(std::cos(a)), static_cast<float>(std::sin(a))});
+  }
+  try {
+    rc::Polygon p = rc::makePolygon(circle);
+    FAIL() << "accepted as a polygon of " << p.count << " vertices, area "
+           << rc::computeMass(p, 1.0f).area;
+  } catch (const rc::InvalidShape& e) {
+    const std::string what = e.what();
+    const std::string head = "polygon: the hull has ";
+    ASSERT_EQ(what.rfind(head, 0), 0u) << what;
+    const int count = std::stoi(what.substr(head.size()));
+    EXPECT_GT(count, 1000) << what;  // 2 pi m / 2.5 mm is 2,513
+    EXPECT_NE(what.find(std::to_string(count) + " vertices; at most 8"), std::string::npos) << what;
+  }
+  // And 200,000 points filling a square give the square.
+  rc::Random rng(23);
+  std::vector<Vec2> cloud;
+  for (int i = 0; i < kPoints; ++i)
+    cloud.push_back(rng.inBox({-50, -50}, {50, 50}));
+  std::vector<Vec2> corners = {{-50, -50}, {50, -50}, {50, 50}, {-50, 50}};
+  cloud.insert(cloud.begin() + 777, corners.begin(), corners.end());
+  rc::Polygon square = rc::makePolygon(cloud);
+  ASSERT_EQ(square.count, 4);
+  for (int k = 0; k < 4; ++k)
+    EXPECT_EQ(square.vertices[k], corners[static_cast<size_t>(k)]);
 }
 
 }  // namespace

@@ -309,6 +309,12 @@ std::vector<Quadtree::OccupiedCell> Quadtree::occupiedCells() const {
 }
 
 void Quadtree::validate() const {
+  validateLists(false);
+}
+
+// fromHeads: the cell lists are found from the proxies that head them (what load() set, in
+// proportion to the proxies), not by scanning every cell of every level (a million and more).
+void Quadtree::validateLists(bool fromHeads) const {
   auto fail = [](const std::string& what) {
     throw std::logic_error("Quadtree::validate: " + what);
   };
@@ -350,12 +356,31 @@ void Quadtree::validate() const {
     int outside = walk(tree->outside, -1, 0, nullptr);
     if (outside != tree->outsideCount) fail("outside count");
     seen += outside;
+    std::vector<int> population(static_cast<std::size_t>(maxDepth_ + 1), 0);
+    if (fromHeads) {
+      for (std::size_t i = 0; i < proxies_.size(); ++i) {
+        const ProxyLinks& k = links_[i];
+        if (!proxies_[i].alive || proxies_[i].isStatic != isStatic || k.level < 0 ||
+            k.prev != kNullProxy)
+          continue;
+        const Level& lv = tree->levels[static_cast<std::size_t>(k.level)];
+        if (lv.heads[static_cast<std::size_t>(k.cell)] != static_cast<ProxyId>(i))
+          fail("proxy " + std::to_string(i) + " heads no cell");
+        population[static_cast<std::size_t>(k.level)] +=
+            walk(static_cast<ProxyId>(i), k.level, k.cell, &lv);
+      }
+    } else {
+      for (int l = 0; l <= maxDepth_; ++l) {
+        const Level& lv = tree->levels[static_cast<std::size_t>(l)];
+        for (int c = 0; c < lv.side * lv.side; ++c)
+          population[static_cast<std::size_t>(l)] +=
+              walk(lv.heads[static_cast<std::size_t>(c)], l, c, &lv);
+      }
+    }
     for (int l = 0; l <= maxDepth_; ++l) {
-      const Level& lv = tree->levels[static_cast<std::size_t>(l)];
-      int pop = 0;
-      for (int c = 0; c < lv.side * lv.side; ++c)
-        pop += walk(lv.heads[static_cast<std::size_t>(c)], l, c, &lv);
-      if (pop != lv.population) fail("population of level " + std::to_string(l));
+      const int pop = population[static_cast<std::size_t>(l)];
+      if (pop != tree->levels[static_cast<std::size_t>(l)].population)
+        fail("population of level " + std::to_string(l));
       seen += pop;
     }
   }
@@ -499,7 +524,7 @@ void Quadtree::load(ByteReader& in) {
         if (!(lv.reach >= 0.0f && lv.reach <= 0.5f * lv.cellSize))
           in.fail("broadphase: a level's reach is out of range");
       }
-    validate();
+    validateLists(true);
   } catch (const std::logic_error& e) {
     // A reader's complaint (invalid_argument) or validate()'s: the tree is left empty.
     clearAll();

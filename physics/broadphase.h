@@ -281,6 +281,7 @@ class Quadtree : public ProxyStore {
   void place(ProxyId id);
   void unlink(ProxyId id);
   void clearAll();
+  void validateLists(bool fromHeads) const;
   void link(ProxyId id, Tree& tree, int level, int cell);
   ProxyId& headOf(Tree& tree, int level, int cell);
   Tree& treeOf(const ProxyData& p) { return p.isStatic ? static_ : moving_; }

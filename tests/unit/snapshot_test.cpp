@@ -220,7 +220,7 @@ TEST(Snapshot, CorruptBytesAreRefusedOrHarmless) {
   const rc::WorldSnapshot snap = scene.world.snapshot();
   rc::Random rng(0xc0ffee);
   int refused = 0, taken = 0;
-  for (int trial = 0; trial < 200; ++trial) {
+  for (int trial = 0; trial < 3000; ++trial) {
     rc::WorldSnapshot bad = snap;
     const auto at =
         static_cast<std::size_t>(rng.uniform(0.0f, 1.0f) * static_cast<float>(bad.size() - 1));

@@ -101,39 +101,6 @@ bool World::isValid(BodyId id) const {
   return s_->find(id) != nullptr;
 }
 
-Vec2 WorldState::velocityOf(const Body& b) const {
-  if (b.slot < 0) return {};
-  const auto i = 3 * static_cast<std::size_t>(b.slot);
-  return {v_[i], v_[i + 1]};
-}
-
-Vec2 WorldState::center(const Body& b) const {
-  if (b.slot < 0) return apply(b.xf, b.localCenter);
-  const auto i = 3 * static_cast<std::size_t>(b.slot);
-  return {static_cast<float>(q_[i]), static_cast<float>(q_[i + 1])};
-}
-
-Sweep WorldState::stepSweep(const Body& b) const {
-  const auto s = static_cast<std::size_t>(b.slot);
-  const std::size_t i = 3 * s;
-  return {b.localCenter,
-          {static_cast<float>(startCenter_[2 * s]), static_cast<float>(startCenter_[2 * s + 1])},
-          {static_cast<float>(q_[i]), static_cast<float>(q_[i + 1])},
-          static_cast<float>(startAngle_[s]),
-          static_cast<float>(q_[i + 2])};
-}
-
-double WorldState::preciseOrigin(const Body& b, int axis) const {
-  if (b.slot < 0) return axis == 0 ? b.xf.p.x : b.xf.p.y;
-  const Vec2 turned = rotate(b.xf.q, b.localCenter);
-  return q_[3 * static_cast<std::size_t>(b.slot) + static_cast<std::size_t>(axis)] -
-         static_cast<double>(axis == 0 ? turned.x : turned.y);
-}
-
-std::array<double, 2> WorldState::preciseOrigin(const Body& b) const {
-  return {preciseOrigin(b, 0), preciseOrigin(b, 1)};
-}
-
 // ------------------------------------------------------------------- creation, destruction
 
 BodyId WorldState::createBody(const BodyDef& def) {
@@ -198,6 +165,7 @@ void WorldState::destroyBody(BodyId id) {
 
 // A new slot at the end, then swapped into the awake slots, before the sleeping ones.
 void WorldState::takeSlot(std::int32_t index, Vec2 velocity, float angularVelocity) {
+  velocitiesSet_ = true;
   Body& b = bodies_[static_cast<std::size_t>(index)];
   b.slot = static_cast<std::int32_t>(slotBody_.size());
   slotBody_.push_back(index);
@@ -250,6 +218,7 @@ void WorldState::disable(Body& b) {
 
 void WorldState::enable(Body& b) {
   if (b.enabled) return;
+  velocitiesSet_ = true;
   b.enabled = true;
   b.sleepTime = 0.0f;
   if (b.slot >= 0) {
@@ -348,6 +317,7 @@ bool World::isEnabled(BodyId id) const {
 // ------------------------------------------------------------------------------ setters
 
 void World::setLinearVelocity(BodyId id, Vec2 v) {
+  s_->velocitiesSet_ = true;
   WorldState& s = *s_;
   WorldState::Body& b = s.body(id);
   requireFinite("setLinearVelocity", "velocity", v);
@@ -359,6 +329,7 @@ void World::setLinearVelocity(BodyId id, Vec2 v) {
   s.pendingRefit_.push_back(id.index);
 }
 void World::setAngularVelocity(BodyId id, float w) {
+  s_->velocitiesSet_ = true;
   WorldState& s = *s_;
   WorldState::Body& b = s.body(id);
   requireFinite("setAngularVelocity", "angular velocity", w);
@@ -386,6 +357,7 @@ void World::setTransform(BodyId id, Vec2 position, float angle) {
 }
 
 void World::setTargetTransform(BodyId id, Vec2 position, float angle, float dt) {
+  s_->velocitiesSet_ = true;
   WorldState& s = *s_;
   WorldState::Body& b = s.body(id);
   requireFinite("setTargetTransform", "position", position);
@@ -409,6 +381,7 @@ void World::setTargetTransform(BodyId id, Vec2 position, float angle, float dt) 
 }
 
 void World::setType(BodyId id, BodyType type) {
+  s_->velocitiesSet_ = true;
   WorldState& s = *s_;
   WorldState::Body& b = s.body(id);
   if (type != BodyType::staticBody && type != BodyType::kinematicBody &&
@@ -500,6 +473,7 @@ void World::applyTorque(BodyId id, float torque) {
   b.torque += torque;
 }
 void World::applyLinearImpulse(BodyId id, Vec2 impulse, Vec2 worldPoint) {
+  s_->velocitiesSet_ = true;
   WorldState& s = *s_;
   WorldState::Body& b = s.body(id);
   requireFinite("applyLinearImpulse", "impulse", impulse);
@@ -512,6 +486,7 @@ void World::applyLinearImpulse(BodyId id, Vec2 impulse, Vec2 worldPoint) {
   s.v_[i + 2] += b.invInertia * cross(worldPoint - s.center(b), impulse);
 }
 void World::applyAngularImpulse(BodyId id, float impulse) {
+  s_->velocitiesSet_ = true;
   WorldState::Body& b = s_->body(id);
   requireFinite("applyAngularImpulse", "impulse", impulse);
   if (b.type != BodyType::dynamicBody || !b.enabled) return;

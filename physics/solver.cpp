@@ -1,6 +1,7 @@
 // The solve: contact constraints prepared, then substeps of free motion, warm start, soft
 // contact solve, position update and relax; restitution; impulses stored for the next step.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "physics/world.h"
@@ -59,7 +60,7 @@ void WorldState::solve(float dt) {
     if (!fields_.empty()) accelerations({}, {}, time_, {});
     return;
   }
-  prepareBodies();
+  prepareBodies(dt);
   const float h = dt / static_cast<float>(def_.substeps);
   const ContactSoftness soft =
       ContactSoftness::make(h, def_.contactHertz, def_.contactDampingRatio, def_.maxPushoutSpeed);
@@ -157,7 +158,7 @@ void WorldState::prepareContacts() {
 
 // Per awake slot: where it starts (the solver measures motion from there), whether it is round,
 // whether it is damped, and the step's constant accelerations.
-void WorldState::prepareBodies() {
+void WorldState::prepareBodies(float dt) {
   const auto slots = static_cast<std::size_t>(awakeCount_);
   startCenter_.resize(2 * slots);
   startAngle_.resize(slots);
@@ -184,6 +185,14 @@ void WorldState::prepareBodies() {
       a[0] = a[1] = a[2] = 0.0f;
     }
   }
+  // Bodies begin the step no faster than quarantineSpeed (checked after every step and after
+  // the game's changes); without force fields, free motion can make one unusable only if some
+  // acceleration could add that much in the step. Otherwise the substeps skip the check.
+  std::uint32_t worst = 0;
+  for (float a : baseAccel_)
+    worst = std::max(worst, std::bit_cast<std::uint32_t>(a) & 0x7FFFFFFFu);
+  checkFreeMotion_ =
+      !fields_.empty() || worst > std::bit_cast<std::uint32_t>(def_.quarantineSpeed / dt);
 }
 
 // The awake bodies' velocities into solver bodies (v and w; the rest as it is).
@@ -224,7 +233,7 @@ void WorldState::integrateFreeMotion(int substep, float h) {
     }
     if (b.angularDamping > 0.0f) v_[3 * s + 2] *= 1.0f / (1.0f + h * b.angularDamping);
   }
-  quarantineUnusable(QuarantineCause::motion, true);
+  if (checkFreeMotion_) quarantineUnusable(QuarantineCause::motion, true);
   freeV_.assign(v.begin(), v.end());
 }
 
@@ -236,10 +245,12 @@ void WorldState::integrateFreeMotion(int substep, float h) {
 void WorldState::quarantineUnusable(QuarantineCause cause, bool inStep) {
   const std::size_t n = 3 * static_cast<std::size_t>(awakeCount_);
   const float limit = def_.quarantineSpeed;
-  bool any = false;
+  // On the magnitude's bits, NaN and infinity sort above every finite float: an integer maximum
+  // (a vector instruction) finds the worst.
+  std::uint32_t worst = 0;
   for (std::size_t i = 0; i < n; ++i)
-    any |= !(std::fabs(v_[i]) <= limit);
-  if (!any) return;
+    worst = std::max(worst, std::bit_cast<std::uint32_t>(v_[i]) & 0x7FFFFFFFu);
+  if (worst <= std::bit_cast<std::uint32_t>(limit)) return;
   for (std::size_t s = 0; s < static_cast<std::size_t>(awakeCount_); ++s) {
     bool bad = false;
     for (std::size_t k = 0; k < 3; ++k)

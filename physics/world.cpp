@@ -84,7 +84,8 @@ void World::step(float dt) {
     ~Stepping() { flag = false; }
   } stepping{s.stepping_};
   // A velocity the game gave (an impulse on top of a fast body) may already be unusable.
-  s.quarantineUnusable(QuarantineCause::motion, false);
+  if (s.velocitiesSet_) s.quarantineUnusable(QuarantineCause::motion, false);
+  s.velocitiesSet_ = false;
   // Bodies new or changed since the last step: proxies stretched along this step's motion.
   std::sort(s.pendingRefit_.begin(), s.pendingRefit_.end());
   s.pendingRefit_.erase(std::unique(s.pendingRefit_.begin(), s.pendingRefit_.end()),

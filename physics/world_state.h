@@ -139,14 +139,39 @@ class WorldState {
   BodyId bodyId(std::int32_t index) const {
     return {index, bodies_[static_cast<std::size_t>(index)].generation};
   }
-  Vec2 center(const Body& b) const;
-  Vec2 velocityOf(const Body& b) const;
+  // (The accessors the phases call per body are defined here, so that every phase's file can
+  // inline them.)
+  Vec2 center(const Body& b) const {
+    if (b.slot < 0) return apply(b.xf, b.localCenter);
+    const auto i = 3 * static_cast<std::size_t>(b.slot);
+    return {static_cast<float>(q_[i]), static_cast<float>(q_[i + 1])};
+  }
+  Vec2 velocityOf(const Body& b) const {
+    if (b.slot < 0) return {};
+    const auto i = 3 * static_cast<std::size_t>(b.slot);
+    return {v_[i], v_[i + 1]};
+  }
   // The body's origin in double (its centre minus the turned local centre): what the
   // narrowphase takes differences of.
-  std::array<double, 2> preciseOrigin(const Body& b) const;
-  double preciseOrigin(const Body& b, int axis) const;  // one component: 0 x, 1 y
+  double preciseOrigin(const Body& b, int axis) const {  // one component: 0 x, 1 y
+    if (b.slot < 0) return axis == 0 ? b.xf.p.x : b.xf.p.y;
+    const Vec2 turned = rotate(b.xf.q, b.localCenter);
+    return q_[3 * static_cast<std::size_t>(b.slot) + static_cast<std::size_t>(axis)] -
+           static_cast<double>(axis == 0 ? turned.x : turned.y);
+  }
+  std::array<double, 2> preciseOrigin(const Body& b) const {
+    return {preciseOrigin(b, 0), preciseOrigin(b, 1)};
+  }
   // An awake body's motion over the step so far, from where it started (float: for sweeps).
-  Sweep stepSweep(const Body& b) const;
+  Sweep stepSweep(const Body& b) const {
+    const auto s = static_cast<std::size_t>(b.slot);
+    const std::size_t i = 3 * s;
+    return {b.localCenter,
+            {static_cast<float>(startCenter_[2 * s]), static_cast<float>(startCenter_[2 * s + 1])},
+            {static_cast<float>(q_[i]), static_cast<float>(q_[i + 1])},
+            static_cast<float>(startAngle_[s]),
+            static_cast<float>(q_[i + 2])};
+  }
   bool isRound(const Body& b) const;  // see Body::round
   void updateMass(Body& b);
   void refitBody(Body& b, Vec2 displacement);
@@ -175,7 +200,7 @@ class WorldState {
   // ---- the solver's stages (solver.cpp)
   void solve(float dt);
   void prepareContacts();
-  void prepareBodies();
+  void prepareBodies(float dt);
   void integrateFreeMotion(int substep, float h);
   void warmStart();
   void integratePositions(float h);
@@ -301,6 +326,10 @@ class WorldState {
   SensorEvents sensorEvents_, pendingSensorEvents_;
   std::vector<QuarantineEvent> quarantineEvents_;
   bool stepping_ = false;
+  // Whether velocities may be unusable: the game set or pushed one since the last step (checked
+  // before the step), forces or fields this step could make one so (checked every substep).
+  bool velocitiesSet_ = true;
+  bool checkFreeMotion_ = true;
   // Found during the step, acted on at its end: bodies to quarantine (with where they began the
   // step: centre and angle), bodies a force field pushed while they slept, and the first id a
   // force field named that is stale.

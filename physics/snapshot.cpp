@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include "physics/bytes.h"
@@ -46,212 +47,275 @@ void defFields(const WorldDef& d, Visit&& visit) {
   visit("bounds.upper.y", d.bounds.upper.y);
 }
 
-void put(ByteWriter& w, Vec2 v) {
-  w.f32(v.x);
-  w.f32(v.y);
+// Every field, once, for both directions: io(a, value) writes through an Out archive and reads
+// through an In archive, so the two cannot disagree on what is in a snapshot or in what order.
+class Out {
+ public:
+  static constexpr bool reading = false;
+  explicit Out(ByteWriter& w) : w_(w) {}
+  void operator()(const bool& v) { w_.boolean(v); }
+  void operator()(const std::uint8_t& v) { w_.u8(v); }
+  void operator()(const std::uint16_t& v) { w_.u16(v); }
+  void operator()(const std::int32_t& v) { w_.i32(v); }
+  void operator()(const std::uint32_t& v) { w_.u32(v); }
+  void operator()(const std::uint64_t& v) { w_.u64(v); }
+  void operator()(const float& v) { w_.f32(v); }
+  void operator()(const double& v) { w_.f64(v); }
+  void operator()(const Vec2& v) {
+    w_.f32(v.x);
+    w_.f32(v.y);
+  }
+  template <class E>
+  requires std::is_enum_v<E>
+  void operator()(const E& e, int) { w_.u8(static_cast<std::uint8_t>(e)); }
+  std::size_t count(std::size_t n, std::size_t) {
+    w_.count(n);
+    return n;
+  }
+
+ private:
+  ByteWriter& w_;
+};
+
+class In {
+ public:
+  static constexpr bool reading = true;
+  explicit In(ByteReader& r) : r_(r) {}
+  void operator()(bool& v) { v = r_.boolean(); }
+  void operator()(std::uint8_t& v) { v = r_.u8(); }
+  void operator()(std::uint16_t& v) { v = r_.u16(); }
+  void operator()(std::int32_t& v) { v = r_.i32(); }
+  void operator()(std::uint32_t& v) { v = r_.u32(); }
+  void operator()(std::uint64_t& v) { v = r_.u64(); }
+  void operator()(float& v) { v = r_.f32(); }
+  void operator()(double& v) { v = r_.f64(); }
+  void operator()(Vec2& v) {
+    v.x = r_.f32();
+    v.y = r_.f32();
+  }
+  // An enumeration of `values` values, refused outside them.
+  template <class E>
+  requires std::is_enum_v<E>
+  void operator()(E& e, int values) {
+    const std::uint8_t v = r_.u8();
+    if (v >= values) r_.fail("an enumeration's value is " + std::to_string(v));
+    e = static_cast<E>(v);
+  }
+  // A count of items of at least minBytes each, refused when what is left cannot hold them.
+  std::size_t count(std::size_t, std::size_t minBytes) { return r_.count(minBytes); }
+  [[noreturn]] void fail(const std::string& why) const { r_.fail(why); }
+
+ private:
+  ByteReader& r_;
+};
+
+template <class A, class V, class Each>
+void list(A& a, V& items, std::size_t minBytes, Each&& each) {
+  const std::size_t n = a.count(items.size(), minBytes);
+  if constexpr (A::reading) items.resize(n);
+  for (auto& item : items)
+    each(item);
 }
-Vec2 getVec2(ByteReader& r) {
-  const float x = r.f32();
-  return {x, r.f32()};
+template <class A, class V>
+void indices(A& a, V& items) {
+  list(a, items, 4, [&](auto& i) { a(i); });
 }
 
-void put(ByteWriter& w, const Shape& s) {
-  w.u8(static_cast<std::uint8_t>(s.type));
+template <class A, class S>
+void io(A& a, S& s) requires std::is_same_v<std::remove_const_t<S>, Shape> {
+  a(s.type, kShapeTypeCount);
+  if constexpr (A::reading) {
+    // The union's member for the type read (zeroed), before its fields are read into it.
+    switch (s.type) {
+      case ShapeType::circle:
+        s = Circle{};
+        break;
+      case ShapeType::box:
+        s = Box{};
+        break;
+      case ShapeType::polygon:
+        s = Polygon{};
+        break;
+      case ShapeType::capsule:
+        s = Capsule{};
+        break;
+      case ShapeType::segment:
+        s = Segment{};
+        break;
+      case ShapeType::chainSegment:
+        s = ChainSegment{};
+        break;
+    }
+  }
   switch (s.type) {
     case ShapeType::circle:
-      put(w, s.circle.center);
-      w.f32(s.circle.radius);
+      a(s.circle.center);
+      a(s.circle.radius);
       return;
     case ShapeType::box:
-      put(w, s.box.center);
-      put(w, s.box.halfExtents);
+      a(s.box.center);
+      a(s.box.halfExtents);
       return;
     case ShapeType::polygon:
-      w.i32(s.polygon.count);
-      w.f32(s.polygon.radius);
-      put(w, s.polygon.centroid);
-      put(w, s.polygon.boxHalfExtents);
+      a(s.polygon.count);
+      if constexpr (A::reading)
+        if (s.polygon.count < 3 || s.polygon.count > kMaxPolygonVertices)
+          a.fail("a polygon's vertex count is " + std::to_string(s.polygon.count));
+      a(s.polygon.radius);
+      a(s.polygon.centroid);
+      a(s.polygon.boxHalfExtents);
       for (int i = 0; i < s.polygon.count; ++i) {
-        put(w, s.polygon.vertices[i]);
-        put(w, s.polygon.normals[i]);
+        a(s.polygon.vertices[i]);
+        a(s.polygon.normals[i]);
       }
       return;
     case ShapeType::capsule:
-      put(w, s.capsule.center1);
-      put(w, s.capsule.center2);
-      w.f32(s.capsule.radius);
+      a(s.capsule.center1);
+      a(s.capsule.center2);
+      a(s.capsule.radius);
       return;
     case ShapeType::segment:
-      put(w, s.segment.point1);
-      put(w, s.segment.point2);
+      a(s.segment.point1);
+      a(s.segment.point2);
       return;
     case ShapeType::chainSegment:
-      put(w, s.chainSegment.ghost1);
-      put(w, s.chainSegment.segment.point1);
-      put(w, s.chainSegment.segment.point2);
-      put(w, s.chainSegment.ghost2);
-      w.boolean(s.chainSegment.oneSided);
+      a(s.chainSegment.ghost1);
+      a(s.chainSegment.segment.point1);
+      a(s.chainSegment.segment.point2);
+      a(s.chainSegment.ghost2);
+      a(s.chainSegment.oneSided);
       return;
   }
 }
 
-Shape getShape(ByteReader& r) {
-  const std::uint8_t type = r.u8();
-  Shape s = Circle{};
-  switch (static_cast<ShapeType>(type)) {
-    case ShapeType::circle: {
-      Circle c;
-      c.center = getVec2(r);
-      c.radius = r.f32();
-      s = c;
-      break;
-    }
-    case ShapeType::box: {
-      Box b;
-      b.center = getVec2(r);
-      b.halfExtents = getVec2(r);
-      s = b;
-      break;
-    }
-    case ShapeType::polygon: {
-      Polygon p;
-      p.count = r.i32();
-      if (p.count < 3 || p.count > kMaxPolygonVertices) r.fail("a polygon's vertex count");
-      p.radius = r.f32();
-      p.centroid = getVec2(r);
-      p.boxHalfExtents = getVec2(r);
-      for (int i = 0; i < p.count; ++i) {
-        p.vertices[i] = getVec2(r);
-        p.normals[i] = getVec2(r);
-      }
-      s = p;
-      break;
-    }
-    case ShapeType::capsule: {
-      Capsule c;
-      c.center1 = getVec2(r);
-      c.center2 = getVec2(r);
-      c.radius = r.f32();
-      s = c;
-      break;
-    }
-    case ShapeType::segment: {
-      Segment g;
-      g.point1 = getVec2(r);
-      g.point2 = getVec2(r);
-      s = g;
-      break;
-    }
-    case ShapeType::chainSegment: {
-      ChainSegment c;
-      c.ghost1 = getVec2(r);
-      c.segment.point1 = getVec2(r);
-      c.segment.point2 = getVec2(r);
-      c.ghost2 = getVec2(r);
-      c.oneSided = r.boolean();
-      s = c;
-      break;
-    }
-    default:
-      r.fail("a shape type of " + std::to_string(type));
-  }
-  try {
-    validate(s);
-  } catch (const InvalidShape& e) {
-    r.fail(std::string("a shape: ") + e.what());
-  }
-  return s;
+template <class A, class R>
+void ioRef(A& a, R& r) {
+  a(r.shape.index);
+  a(r.shape.generation);
+  a(r.body.index);
+  a(r.body.generation);
+  a(r.shapeUserData);
+  a(r.bodyUserData);
 }
 
-void put(ByteWriter& w, const ShapeRef& s) {
-  w.i32(s.shape.index);
-  w.u32(s.shape.generation);
-  w.i32(s.body.index);
-  w.u32(s.body.generation);
-  w.u64(s.shapeUserData);
-  w.u64(s.bodyUserData);
-}
-ShapeRef getRef(ByteReader& r) {
-  ShapeRef s;
-  s.shape.index = r.i32();
-  s.shape.generation = r.u32();
-  s.body.index = r.i32();
-  s.body.generation = r.u32();
-  s.shapeUserData = r.u64();
-  s.bodyUserData = r.u64();
-  return s;
+// Begin and hit events have the same fields.
+template <class A, class E>
+void ioTouch(A& a, E& e) {
+  ioRef(a, e.a);
+  ioRef(a, e.b);
+  a(e.point);
+  a(e.normal);
+  a(e.approachSpeed);
 }
 
-template <class T, class Put>
-void putList(ByteWriter& w, const std::vector<T>& list, Put&& one) {
-  w.count(list.size());
-  for (const T& item : list)
-    one(item);
-}
-template <class T, class Get>
-void getList(ByteReader& r, std::vector<T>& list, std::size_t minBytes, Get&& one) {
-  const std::size_t n = r.count(minBytes);
-  list.clear();
-  list.reserve(n);
-  for (std::size_t i = 0; i < n; ++i)
-    list.push_back(one());
-}
-
-void putEvents(ByteWriter& w, const ContactEvents& e, const SensorEvents& s) {
-  auto touch = [&](const auto& t) {
-    put(w, t.a);
-    put(w, t.b);
-    put(w, t.point);
-    put(w, t.normal);
-    w.f32(t.approachSpeed);
-  };
-  putList(w, e.begin, touch);
-  putList(w, e.hit, touch);
-  putList(w, e.end, [&](const ContactEndEvent& t) {
-    put(w, t.a);
-    put(w, t.b);
-    w.boolean(t.destroyed);
+template <class A, class C, class S>
+void ioEvents(A& a, C& contacts, S& sensors) {
+  list(a, contacts.begin, 56, [&](auto& e) { ioTouch(a, e); });
+  list(a, contacts.hit, 56, [&](auto& e) { ioTouch(a, e); });
+  list(a, contacts.end, 33, [&](auto& e) {
+    ioRef(a, e.a);
+    ioRef(a, e.b);
+    a(e.destroyed);
   });
-  for (const auto* list : {&s.begin, &s.end})
-    putList(w, *list, [&](const SensorEvent& t) {
-      put(w, t.sensor);
-      put(w, t.visitor);
-      w.boolean(t.destroyed);
+  for (auto* events : {&sensors.begin, &sensors.end})
+    list(a, *events, 33, [&](auto& e) {
+      ioRef(a, e.sensor);
+      ioRef(a, e.visitor);
+      a(e.destroyed);
     });
 }
 
-void getEvents(ByteReader& r, ContactEvents& e, SensorEvents& s) {
-  auto touch = [&]<class T>(T& t) {
-    t.a = getRef(r);
-    t.b = getRef(r);
-    t.point = getVec2(r);
-    t.normal = getVec2(r);
-    t.approachSpeed = r.f32();
-    return t;
-  };
-  getList(r, e.begin, 52, [&] {
-    ContactBeginEvent t;
-    return touch(t);
+// The state, in the order it is written; W is WorldState or const WorldState.
+template <class A, class W>
+void ioState(A& a, W& s) {
+  a(s.time_);
+  a(s.bodyCount_);
+  a(s.shapeCount_);
+  a(s.awakeCount_);
+  list(a, s.bodies_, 111, [&](auto& b) {  // (the least bytes of each item)
+    a(b.type, 3);
+    for (auto* flag : {&b.alive, &b.fixedRotation, &b.bullet, &b.allowSleep, &b.enabled, &b.round})
+      a(*flag);
+    a(b.generation);
+    a(b.xf.p);
+    a(b.xf.q.c);
+    a(b.xf.q.s);
+    a(b.angle);
+    a(b.localCenter);
+    a(b.force);
+    for (auto* f : {&b.torque, &b.mass, &b.invMass, &b.inertia, &b.invInertia, &b.linearDamping,
+                    &b.angularDamping, &b.gravityScale, &b.minExtent, &b.maxExtent, &b.sleepTime})
+      a(*f);
+    a(b.island);
+    a(b.userData);
+    a(b.slot);
+    indices(a, b.shapes);
   });
-  getList(r, e.hit, 52, [&] {
-    ContactHitEvent t;
-    return touch(t);
+  indices(a, s.freeBodies_);
+  list(a, s.shapes_, 60, [&](auto& r) {
+    io(a, r.shape);
+    a(r.body);
+    a(r.generation);
+    for (auto* flag : {&r.alive, &r.isSensor, &r.contactEvents, &r.hitEvents, &r.sensorEvents})
+      a(*flag);
+    for (auto* f : {&r.density, &r.friction, &r.restitution, &r.bound.radius})
+      a(*f);
+    a(r.bound.center);
+    a(r.filter.category);
+    a(r.filter.mask);
+    a(r.proxy);
+    a(r.userData);
   });
-  getList(r, e.end, 33, [&] {
-    ContactEndEvent t;
-    t.a = getRef(r);
-    t.b = getRef(r);
-    t.destroyed = r.boolean();
-    return t;
+  indices(a, s.freeShapes_);
+  list(a, s.contacts_, 49, [&](auto& c) {
+    a(c.shapeA);
+    a(c.shapeB);
+    a(c.manifold.normal);
+    a(c.manifold.pointCount);
+    if constexpr (A::reading)
+      if (c.manifold.pointCount < 0 || c.manifold.pointCount > 2)
+        a.fail("a manifold's point count is " + std::to_string(c.manifold.pointCount));
+    for (int k = 0; k < c.manifold.pointCount; ++k) {
+      auto& p = c.manifold.points[k];
+      a(p.point);
+      a(p.anchorA);
+      a(p.anchorB);
+      a(p.separation);
+      a(p.id);
+    }
+    for (int k = 0; k < 2; ++k) {
+      a(c.normalImpulse[k]);
+      a(c.tangentImpulse[k]);
+    }
+    a(c.friction);
+    a(c.restitution);
+    a(c.touching);
   });
-  for (auto* list : {&s.begin, &s.end})
-    getList(r, *list, 33, [&] {
-      SensorEvent t;
-      t.sensor = getRef(r);
-      t.visitor = getRef(r);
-      t.destroyed = r.boolean();
-      return t;
-    });
+  indices(a, s.slotBody_);
+  if constexpr (A::reading) {
+    s.q_.resize(3 * s.slotBody_.size());
+    s.v_.resize(3 * s.slotBody_.size());
+  }
+  for (std::size_t k = 0; k < s.q_.size(); ++k) {
+    a(s.q_[k]);
+    a(s.v_[k]);
+  }
+  list(a, s.islands_, 4, [&](auto& island) { indices(a, island); });
+  indices(a, s.freeIslands_);
+  indices(a, s.pendingRefit_);
+  list(a, s.sensorPairs_, 9, [&](auto& p) {
+    a(p.sensor);
+    a(p.visitor);
+    a(p.overlapping);
+  });
+  ioEvents(a, s.events_, s.sensorEvents_);
+  ioEvents(a, s.pendingEvents_, s.pendingSensorEvents_);
+  list(a, s.quarantineEvents_, 17, [&](auto& e) {
+    a(e.body.index);
+    a(e.body.generation);
+    a(e.userData);
+    a(e.cause, 3);
+  });
 }
 
 }  // namespace
@@ -263,87 +327,8 @@ WorldSnapshot World::snapshot() const {
   w.u32(kMagic);
   w.u32(kFormat);
   defFields(s.def_, [&](const char*, float v) { w.f32(v); });
-  w.f64(s.time_);
-  w.i32(s.bodyCount_);
-  w.i32(s.shapeCount_);
-  w.i32(s.awakeCount_);
-
-  putList(w, s.bodies_, [&](const WorldState::Body& b) {
-    w.u8(static_cast<std::uint8_t>(b.type));
-    w.u8(static_cast<std::uint8_t>(b.alive | b.fixedRotation << 1 | b.bullet << 2 |
-                                   b.allowSleep << 3 | b.enabled << 4 | b.round << 5));
-    w.u32(b.generation);
-    put(w, b.xf.p);
-    w.f32(b.xf.q.c);
-    w.f32(b.xf.q.s);
-    w.f32(b.angle);
-    put(w, b.localCenter);
-    put(w, b.force);
-    for (float f : {b.torque, b.mass, b.invMass, b.inertia, b.invInertia, b.linearDamping,
-                    b.angularDamping, b.gravityScale, b.minExtent, b.maxExtent, b.sleepTime})
-      w.f32(f);
-    w.i32(b.island);
-    w.u64(b.userData);
-    w.i32(b.slot);
-    putList(w, b.shapes, [&](std::int32_t shape) { w.i32(shape); });
-  });
-  putList(w, s.freeBodies_, [&](std::int32_t i) { w.i32(i); });
-  putList(w, s.shapes_, [&](const WorldState::ShapeRecord& r) {
-    put(w, r.shape);
-    w.i32(r.body);
-    w.u32(r.generation);
-    w.u8(static_cast<std::uint8_t>(r.alive | r.isSensor << 1 | r.contactEvents << 2 |
-                                   r.hitEvents << 3 | r.sensorEvents << 4));
-    for (float f :
-         {r.density, r.friction, r.restitution, r.bound.center.x, r.bound.center.y, r.bound.radius})
-      w.f32(f);
-    w.u32(r.filter.category);
-    w.u32(r.filter.mask);
-    w.i32(r.proxy);
-    w.u64(r.userData);
-  });
-  putList(w, s.freeShapes_, [&](std::int32_t i) { w.i32(i); });
-  putList(w, s.contacts_, [&](const WorldState::Contact& c) {
-    w.i32(c.shapeA);
-    w.i32(c.shapeB);
-    put(w, c.manifold.normal);
-    w.i32(c.manifold.pointCount);
-    for (int k = 0; k < c.manifold.pointCount; ++k) {
-      const ManifoldPoint& p = c.manifold.points[k];
-      put(w, p.point);
-      put(w, p.anchorA);
-      put(w, p.anchorB);
-      w.f32(p.separation);
-      w.u16(p.id);
-    }
-    for (float f : {c.normalImpulse[0], c.normalImpulse[1], c.tangentImpulse[0],
-                    c.tangentImpulse[1], c.friction, c.restitution})
-      w.f32(f);
-    w.boolean(c.touching);
-  });
-  putList(w, s.slotBody_, [&](std::int32_t i) { w.i32(i); });
-  for (std::size_t k = 0; k < s.q_.size(); ++k) {
-    w.f64(s.q_[k]);
-    w.f32(s.v_[k]);
-  }
-  putList(w, s.islands_, [&](const std::vector<std::int32_t>& island) {
-    putList(w, island, [&](std::int32_t i) { w.i32(i); });
-  });
-  putList(w, s.freeIslands_, [&](std::int32_t i) { w.i32(i); });
-  putList(w, s.pendingRefit_, [&](std::int32_t i) { w.i32(i); });
-  putList(w, s.sensorPairs_, [&](const WorldState::SensorPair& p) {
-    w.i32(p.sensor);
-    w.i32(p.visitor);
-    w.boolean(p.overlapping);
-  });
-  putEvents(w, s.events_, s.sensorEvents_);
-  putEvents(w, s.pendingEvents_, s.pendingSensorEvents_);
-  putList(w, s.quarantineEvents_, [&](const QuarantineEvent& e) {
-    w.i32(e.body.index);
-    w.u32(e.body.generation);
-    w.u64(e.userData);
-    w.u8(static_cast<std::uint8_t>(e.cause));
-  });
+  Out out(w);
+  ioState(out, s);
   s.broadphase_.save(w);
   return bytes;
 }
@@ -390,34 +375,13 @@ void decode(ByteReader& r, WorldState& s) {
   auto need = [&](bool ok, const char* what) {
     if (!ok) r.fail(what);
   };
-  s.time_ = r.f64();
-  s.bodyCount_ = r.i32();
-  s.shapeCount_ = r.i32();
-  s.awakeCount_ = r.i32();
+  In in(r);
+  ioState(in, s);
+  s.broadphase_.load(r);
+  need(r.atEnd(), "bytes after the end");
 
-  getList(r, s.bodies_, 90, [&] {
-    WorldState::Body b;
-    const std::uint8_t type = r.u8();
-    need(type <= 2, "a body type");
-    b.type = static_cast<BodyType>(type);
-    const std::uint8_t flags = r.u8();
-    need(flags < 64, "a body's flags");
-    b.alive = flags & 1;
-    b.fixedRotation = flags & 2;
-    b.bullet = flags & 4;
-    b.allowSleep = flags & 8;
-    b.enabled = flags & 16;
-    b.round = flags & 32;
-    b.generation = r.u32();
-    b.xf.p = getVec2(r);
-    b.xf.q.c = r.f32();
-    b.xf.q.s = r.f32();
-    b.angle = r.f32();
-    b.localCenter = getVec2(r);
-    b.force = getVec2(r);
-    for (float* f : {&b.torque, &b.mass, &b.invMass, &b.inertia, &b.invInertia, &b.linearDamping,
-                     &b.angularDamping, &b.gravityScale, &b.minExtent, &b.maxExtent, &b.sleepTime})
-      *f = r.f32();
+  // Every float usable, every shape a valid one.
+  for (const WorldState::Body& b : s.bodies_) {
     const float c = b.xf.q.c, sn = b.xf.q.s;
     need(isFinite(b.xf.p) && std::isfinite(b.angle) && isFinite(b.localCenter) &&
              isFinite(b.force) && std::isfinite(b.torque) && std::isfinite(b.mass) &&
@@ -427,58 +391,19 @@ void decode(ByteReader& r, WorldState& s) {
              std::isfinite(b.maxExtent) && std::isfinite(b.sleepTime) &&
              std::fabs(c * c + sn * sn - 1.0f) < 1e-4f,
          "a body's state is not finite");
-    b.island = r.i32();
-    b.userData = r.u64();
-    b.slot = r.i32();
-    getList(r, b.shapes, 4, [&] { return r.i32(); });
-    return b;
-  });
-  getList(r, s.freeBodies_, 4, [&] { return r.i32(); });
-  getList(r, s.shapes_, 60, [&] {
-    WorldState::ShapeRecord rec;
-    rec.shape = getShape(r);
-    rec.body = r.i32();
-    rec.generation = r.u32();
-    const std::uint8_t flags = r.u8();
-    need(flags < 32, "a shape's flags");
-    rec.alive = flags & 1;
-    rec.isSensor = flags & 2;
-    rec.contactEvents = flags & 4;
-    rec.hitEvents = flags & 8;
-    rec.sensorEvents = flags & 16;
-    for (float* f : {&rec.density, &rec.friction, &rec.restitution, &rec.bound.center.x,
-                     &rec.bound.center.y, &rec.bound.radius})
-      *f = r.f32();
+  }
+  for (const WorldState::ShapeRecord& rec : s.shapes_) {
+    try {
+      validate(rec.shape);
+    } catch (const InvalidShape& e) {
+      r.fail(std::string("a shape: ") + e.what());
+    }
     need(std::isfinite(rec.density) && std::isfinite(rec.friction) &&
              std::isfinite(rec.restitution) && isFinite(rec.bound.center) &&
              std::isfinite(rec.bound.radius),
          "a shape's material is not finite");
-    rec.filter.category = r.u32();
-    rec.filter.mask = r.u32();
-    rec.proxy = r.i32();
-    rec.userData = r.u64();
-    return rec;
-  });
-  getList(r, s.freeShapes_, 4, [&] { return r.i32(); });
-  getList(r, s.contacts_, 45, [&] {
-    WorldState::Contact c;
-    c.shapeA = r.i32();
-    c.shapeB = r.i32();
-    c.manifold.normal = getVec2(r);
-    c.manifold.pointCount = r.i32();
-    need(c.manifold.pointCount >= 0 && c.manifold.pointCount <= 2, "a manifold's point count");
-    for (int k = 0; k < c.manifold.pointCount; ++k) {
-      ManifoldPoint& p = c.manifold.points[k];
-      p.point = getVec2(r);
-      p.anchorA = getVec2(r);
-      p.anchorB = getVec2(r);
-      p.separation = r.f32();
-      p.id = r.u16();
-    }
-    for (float* f : {&c.normalImpulse[0], &c.normalImpulse[1], &c.tangentImpulse[0],
-                     &c.tangentImpulse[1], &c.friction, &c.restitution})
-      *f = r.f32();
-    c.touching = r.boolean();
+  }
+  for (const WorldState::Contact& c : s.contacts_) {
     bool finite =
         isFinite(c.manifold.normal) && std::isfinite(c.friction) && std::isfinite(c.restitution);
     for (int k = 0; k < 2; ++k)
@@ -489,45 +414,10 @@ void decode(ByteReader& r, WorldState& s) {
                std::isfinite(p.separation);
     }
     need(finite, "a contact is not finite");
-    return c;
-  });
-  getList(r, s.slotBody_, 4, [&] { return r.i32(); });
-  s.q_.resize(3 * s.slotBody_.size());
-  s.v_.resize(3 * s.slotBody_.size());
-  for (std::size_t k = 0; k < s.q_.size(); ++k) {
-    s.q_[k] = r.f64();
-    s.v_[k] = r.f32();
-    // (A position floats cannot hold would overflow the step's boxes.)
-    need(std::fabs(s.q_[k]) < 1e30 && std::isfinite(s.v_[k]), "a body's state is out of range");
   }
-  getList(r, s.islands_, 4, [&] {
-    std::vector<std::int32_t> island;
-    getList(r, island, 4, [&] { return r.i32(); });
-    return island;
-  });
-  getList(r, s.freeIslands_, 4, [&] { return r.i32(); });
-  getList(r, s.pendingRefit_, 4, [&] { return r.i32(); });
-  getList(r, s.sensorPairs_, 9, [&] {
-    WorldState::SensorPair p;
-    p.sensor = r.i32();
-    p.visitor = r.i32();
-    p.overlapping = r.boolean();
-    return p;
-  });
-  getEvents(r, s.events_, s.sensorEvents_);
-  getEvents(r, s.pendingEvents_, s.pendingSensorEvents_);
-  getList(r, s.quarantineEvents_, 17, [&] {
-    QuarantineEvent e;
-    e.body.index = r.i32();
-    e.body.generation = r.u32();
-    e.userData = r.u64();
-    const std::uint8_t cause = r.u8();
-    need(cause <= 2, "a quarantine cause");
-    e.cause = static_cast<QuarantineCause>(cause);
-    return e;
-  });
-  s.broadphase_.load(r);
-  need(r.atEnd(), "bytes after the end");
+  // (A position floats cannot hold would overflow the step's boxes.)
+  for (std::size_t k = 0; k < s.q_.size(); ++k)
+    need(std::fabs(s.q_[k]) < 1e30 && std::isfinite(s.v_[k]), "a body's state is out of range");
 
   // Every index in range and every cross-reference consistent: what the step relies on.
   const auto bodies = static_cast<std::int32_t>(s.bodies_.size());

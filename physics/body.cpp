@@ -484,6 +484,9 @@ void World::applyLinearImpulse(BodyId id, Vec2 impulse, Vec2 worldPoint) {
   s.v_[i] += b.invMass * impulse.x;
   s.v_[i + 1] += b.invMass * impulse.y;
   s.v_[i + 2] += b.invInertia * cross(worldPoint - s.center(b), impulse);
+  // A new velocity, as from setLinearVelocity: its proxies are stretched along the next step's
+  // motion before pairs are found, or a fast body launched this way meets no moving body then.
+  s.pendingRefit_.push_back(id.index);
 }
 void World::applyAngularImpulse(BodyId id, float impulse) {
   s_->velocitiesSet_ = true;

@@ -318,17 +318,24 @@ class BruteForce : public ProxyStore {
   }
 };
 
+// How the casts below order hits of equal fraction: by the proxy's id, or by a key of the
+// caller's (the world ranks by shape id, which a proxy's id does not follow once proxies are
+// removed and made again).
+struct RankById {
+  std::uint64_t operator()(ProxyId id) const { return static_cast<std::uint64_t>(id); }
+};
+
 // The nearest hit of a ray (radius 0) or swept circle through either broadphase.
 // exact(id, input) is the exact test of that proxy's shape against the whole cast, returning a
-// CastOutput. Ties in fraction go to the lower id, so the answer does not
+// CastOutput. Ties in fraction go to the lower rank(id), so the answer does not
 // depend on the traversal order. out.hit is false when nothing was hit.
-template <class Broadphase, class Exact>
+template <class Broadphase, class Exact, class Rank = RankById>
 ProxyHit castClosest(const Broadphase& bp, const RayCastInput& in, float radius, ProxyFilter filter,
-                     Exact&& exact);
-// Every hit along the cast, sorted by fraction, then by id.
-template <class Broadphase, class Exact>
+                     Exact&& exact, Rank rank = {});
+// Every hit along the cast, sorted by fraction, then by rank(id).
+template <class Broadphase, class Exact, class Rank = RankById>
 std::vector<ProxyHit> castAll(const Broadphase& bp, const RayCastInput& in, float radius,
-                              ProxyFilter filter, Exact&& exact);
+                              ProxyFilter filter, Exact&& exact, Rank rank = {});
 
 // ---------------------------------------------------------------------------------------------
 
@@ -641,9 +648,9 @@ void Quadtree::cast(const RayCastInput& in, float radius, ProxyFilter filter, Ca
   }
 }
 
-template <class Broadphase, class Exact>
+template <class Broadphase, class Exact, class Rank>
 ProxyHit castClosest(const Broadphase& bp, const RayCastInput& in, float radius, ProxyFilter filter,
-                     Exact&& exact) {
+                     Exact&& exact, Rank rank) {
   ProxyHit best;
   bp.cast(in, radius, filter, [&](ProxyId id, const RayCastInput& current) {
     // The exact test sees the whole cast, not the clipped one: its result then cannot depend on
@@ -651,7 +658,7 @@ ProxyHit castClosest(const Broadphase& bp, const RayCastInput& in, float radius,
     const CastOutput out = exact(id, in);
     if (!out.hit || out.fraction > current.maxFraction) return current.maxFraction;
     if (!best.out.hit || out.fraction < best.out.fraction ||
-        (out.fraction == best.out.fraction && id < best.id))
+        (out.fraction == best.out.fraction && rank(id) < rank(best.id)))
       best = {id, out};
     // Clip at the hit; a hit at fraction 0 cannot be beaten but may tie with a lower id.
     return std::max(out.fraction, std::numeric_limits<float>::min());
@@ -659,17 +666,18 @@ ProxyHit castClosest(const Broadphase& bp, const RayCastInput& in, float radius,
   return best;
 }
 
-template <class Broadphase, class Exact>
+template <class Broadphase, class Exact, class Rank>
 std::vector<ProxyHit> castAll(const Broadphase& bp, const RayCastInput& in, float radius,
-                              ProxyFilter filter, Exact&& exact) {
+                              ProxyFilter filter, Exact&& exact, Rank rank) {
   std::vector<ProxyHit> hits;
   bp.cast(in, radius, filter, [&](ProxyId id, const RayCastInput& current) {
     const CastOutput out = exact(id, in);
     if (out.hit) hits.push_back({id, out});
     return current.maxFraction;
   });
-  std::sort(hits.begin(), hits.end(), [](const ProxyHit& a, const ProxyHit& b) {
-    return a.out.fraction != b.out.fraction ? a.out.fraction < b.out.fraction : a.id < b.id;
+  std::sort(hits.begin(), hits.end(), [&rank](const ProxyHit& a, const ProxyHit& b) {
+    return a.out.fraction != b.out.fraction ? a.out.fraction < b.out.fraction
+                                            : rank(a.id) < rank(b.id);
   });
   return hits;
 }

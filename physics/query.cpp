@@ -36,13 +36,16 @@ bool WorldState::accepts(const QueryFilter& filter, std::int32_t shape) const {
 template <class Exact>
 std::optional<WorldHit> WorldState::closest(const RayCastInput& in, float radius,
                                             const QueryFilter& filter, Exact&& exact) const {
-  const ProxyHit h =
-      castClosest(broadphase_, in, radius, filter.bits, [&](ProxyId id, const RayCastInput& ray) {
+  // Ties go to the lower shape id (a proxy's userData), not the lower proxy id.
+  const ProxyHit h = castClosest(
+      broadphase_, in, radius, filter.bits,
+      [&](ProxyId id, const RayCastInput& ray) {
         const auto shape = static_cast<std::int32_t>(broadphase_.userData(id));
         const ShapeRecord& r = shapes_[static_cast<std::size_t>(shape)];
         if (r.isSensor || !accepts(filter, shape)) return CastOutput{};
         return exact(r, ray);
-      });
+      },
+      [this](ProxyId id) { return broadphase_.userData(id); });
   if (!h.out.hit) return std::nullopt;
   return hitOf(h);
 }
@@ -95,14 +98,15 @@ std::vector<WorldHit> World::castRayAll(Vec2 origin, Vec2 translation,
   checkCast("castRayAll", origin, translation);
   const WorldState& s = *s_;
   std::vector<WorldHit> out;
-  for (const ProxyHit& h :
-       castAll(s.broadphase_, {origin, translation, 1.0f}, 0.0f, filter.bits,
-               [&s, &filter](ProxyId id, const RayCastInput&ray) {
-                 const auto shape = static_cast<std::int32_t>(s.broadphase_.userData(id));
-                 const WorldState::ShapeRecord& r = s.shapes_[static_cast<std::size_t>(shape)];
-                 if (r.isSensor || !s.accepts(filter, shape)) return CastOutput{};
-                 return rayCast(r.shape, s.transformOf(r), ray);
-               }))
+  for (const ProxyHit& h : castAll(
+           s.broadphase_, {origin, translation, 1.0f}, 0.0f, filter.bits,
+           [&s, &filter](ProxyId id, const RayCastInput&ray) {
+             const auto shape = static_cast<std::int32_t>(s.broadphase_.userData(id));
+             const WorldState::ShapeRecord& r = s.shapes_[static_cast<std::size_t>(shape)];
+             if (r.isSensor || !s.accepts(filter, shape)) return CastOutput{};
+             return rayCast(r.shape, s.transformOf(r), ray);
+           },
+           [&s](ProxyId id) { return s.broadphase_.userData(id); }))
     out.push_back(s.hitOf(h));
   return out;
 }

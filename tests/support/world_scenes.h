@@ -1,0 +1,58 @@
+// Small scenes and closed forms shared by the world API tests (body_test, body_shape_test,
+// query_test): the ground, bodies placed by definition, fixed-rate stepping, and where a free
+// body is after n steps of the world's integrator.
+#pragma once
+
+#include <cstdint>
+
+#include "physics/world.h"
+
+namespace rc::testing {
+
+inline constexpr float kStep = 1.0f / 60.0f;
+
+inline BodyDef bodyAt(BodyType type, Vec2 p, float angle = 0.0f) {
+  BodyDef def;
+  def.type = type;
+  def.position = p;
+  def.angle = angle;
+  return def;
+}
+inline BodyDef dynamicAt(Vec2 p, float angle = 0.0f) {
+  return bodyAt(BodyType::dynamicBody, p, angle);
+}
+
+// A static 100 x 20 m slab whose top face is y = 0.
+inline BodyId ground(World& w, float friction = 0.6f, float restitution = 0.0f) {
+  BodyId g = w.createBody(bodyAt(BodyType::staticBody, {0, -10}));
+  ShapeDef sd;
+  sd.friction = friction;
+  sd.restitution = restitution;
+  w.createShape(g, makeBox(50, 10), sd);
+  return g;
+}
+
+// A dynamic box of half-size `half` centred at p, with the given shape definition.
+inline BodyId boxAt(World& w, Vec2 p, float half = 0.5f, const ShapeDef& sd = {}) {
+  BodyId b = w.createBody(dynamicAt(p));
+  w.createShape(b, makeBox(half, half), sd);
+  return b;
+}
+
+inline void stepN(World& w, int n, float dt = kStep) {
+  for (int i = 0; i < n; ++i)
+    w.step(dt);
+}
+
+// How far a free body falls in `steps` world steps of dt under acceleration g (positive down),
+// starting at rest: semi-implicit Euler with `substeps` substeps of h = dt / substeps gives
+// v_k = -k g h and y_k = -g h^2 k (k + 1) / 2 after k substeps (the world's default
+// integrator; FreeBodiesFollowTheIntegratorExactly checks that free bodies follow it). The
+// continuous g t^2 / 2 is less by g h t / 2.
+inline double eulerFall(double g, float dt, int substeps, int steps) {
+  const double h = static_cast<double>(dt) / substeps;
+  const double k = static_cast<double>(steps) * substeps;
+  return g * h * h * k * (k + 1.0) / 2.0;
+}
+
+}  // namespace rc::testing

@@ -140,6 +140,22 @@ bool WorldState::isRound(const Body& b) const {
 }
 
 void WorldState::updateMass(Body& b) {
+  const std::array<double, 2> origin = preciseOrigin(b);
+  const Vec2 oldLocalCenter = b.localCenter;
+  massProperties(b);
+  if (b.slot < 0 || b.localCenter == oldLocalCenter) return;
+  // The centre of mass moved: keep the origin where it is and the motion of every point.
+  const auto i = 3 * static_cast<std::size_t>(b.slot);
+  const Vec2 turned = rotate(b.xf.q, b.localCenter);
+  const float w = v_[i + 2];
+  const Vec2 shift = cross(w, rotate(b.xf.q, b.localCenter - oldLocalCenter));
+  q_[i] = origin[0] + turned.x;
+  q_[i + 1] = origin[1] + turned.y;
+  v_[i] += shift.x;
+  v_[i + 1] += shift.y;
+}
+
+void WorldState::massProperties(Body& b) const {
   b.mass = b.invMass = b.inertia = b.invInertia = 0.0f;
   b.minExtent = std::numeric_limits<float>::max();
   b.maxExtent = 0.0f;
@@ -147,8 +163,6 @@ void WorldState::updateMass(Body& b) {
     const ShapeRecord& r = shapes_[static_cast<std::size_t>(s)];
     widenExtents(b.minExtent, b.maxExtent, r.shape, r.bound);
   }
-  const std::array<double, 2> origin = preciseOrigin(b);
-  const Vec2 oldLocalCenter = b.localCenter;
   if (b.type != BodyType::dynamicBody) {
     b.localCenter = {};
   } else {
@@ -171,16 +185,6 @@ void WorldState::updateMass(Body& b) {
     b.invInertia = (b.fixedRotation || b.inertia <= 0.0f) ? 0.0f : 1.0f / b.inertia;
   }
   b.round = isRound(b);
-  if (b.slot < 0 || b.localCenter == oldLocalCenter) return;
-  // The centre of mass moved: keep the origin where it is and the motion of every point.
-  const auto i = 3 * static_cast<std::size_t>(b.slot);
-  const Vec2 turned = rotate(b.xf.q, b.localCenter);
-  const float w = v_[i + 2];
-  const Vec2 shift = cross(w, rotate(b.xf.q, b.localCenter - oldLocalCenter));
-  q_[i] = origin[0] + turned.x;
-  q_[i + 1] = origin[1] + turned.y;
-  v_[i] += shift.x;
-  v_[i + 1] += shift.y;
 }
 
 // ------------------------------------------------------------------------------ proxies

@@ -232,19 +232,17 @@ void ioState(A& a, W& s) {
   a(s.bodyCount_);
   a(s.shapeCount_);
   a(s.awakeCount_);
-  list(a, s.bodies_, 111, [&](auto& b) {  // (the least bytes of each item)
+  list(a, s.bodies_, 78, [&](auto& b) {  // (the least bytes of each item)
     a(b.type, 3);
-    for (auto* flag : {&b.alive, &b.fixedRotation, &b.bullet, &b.allowSleep, &b.enabled, &b.round})
+    for (auto* flag : {&b.alive, &b.fixedRotation, &b.bullet, &b.allowSleep, &b.enabled})
       a(*flag);
     a(b.generation);
     a(b.xf.p);
     a(b.xf.q.c);
     a(b.xf.q.s);
     a(b.angle);
-    a(b.localCenter);
     a(b.force);
-    for (auto* f : {&b.torque, &b.mass, &b.invMass, &b.inertia, &b.invInertia, &b.linearDamping,
-                    &b.angularDamping, &b.gravityScale, &b.minExtent, &b.maxExtent, &b.sleepTime})
+    for (auto* f : {&b.torque, &b.linearDamping, &b.angularDamping, &b.gravityScale, &b.sleepTime})
       a(*f);
     a(b.island);
     a(b.userData);
@@ -252,15 +250,14 @@ void ioState(A& a, W& s) {
     indices(a, b.shapes);
   });
   indices(a, s.freeBodies_);
-  list(a, s.shapes_, 60, [&](auto& r) {
+  list(a, s.shapes_, 58, [&](auto& r) {
     io(a, r.shape);
     a(r.body);
     a(r.generation);
     for (auto* flag : {&r.alive, &r.isSensor, &r.contactEvents, &r.hitEvents, &r.sensorEvents})
       a(*flag);
-    for (auto* f : {&r.density, &r.friction, &r.restitution, &r.bound.radius})
+    for (auto* f : {&r.density, &r.friction, &r.restitution})
       a(*f);
-    a(r.bound.center);
     a(r.filter.category);
     a(r.filter.mask);
     a(r.proxy);
@@ -383,13 +380,10 @@ void decode(ByteReader& r, WorldState& s) {
   // Every float usable, every shape a valid one.
   for (const WorldState::Body& b : s.bodies_) {
     const float c = b.xf.q.c, sn = b.xf.q.s;
-    need(isFinite(b.xf.p) && std::isfinite(b.angle) && isFinite(b.localCenter) &&
-             isFinite(b.force) && std::isfinite(b.torque) && std::isfinite(b.mass) &&
-             std::isfinite(b.invMass) && std::isfinite(b.inertia) && std::isfinite(b.invInertia) &&
-             std::isfinite(b.linearDamping) && std::isfinite(b.angularDamping) &&
-             std::isfinite(b.gravityScale) && std::isfinite(b.minExtent) &&
-             std::isfinite(b.maxExtent) && std::isfinite(b.sleepTime) &&
-             std::fabs(c * c + sn * sn - 1.0f) < 1e-4f,
+    need(isFinite(b.xf.p) && std::isfinite(b.angle) && isFinite(b.force) &&
+             std::isfinite(b.torque) && std::isfinite(b.linearDamping) &&
+             std::isfinite(b.angularDamping) && std::isfinite(b.gravityScale) &&
+             std::isfinite(b.sleepTime) && std::fabs(c * c + sn * sn - 1.0f) < 1e-4f,
          "a body's state is not finite");
   }
   for (const WorldState::ShapeRecord& rec : s.shapes_) {
@@ -398,10 +392,9 @@ void decode(ByteReader& r, WorldState& s) {
     } catch (const InvalidShape& e) {
       r.fail(std::string("a shape: ") + e.what());
     }
-    need(std::isfinite(rec.density) && std::isfinite(rec.friction) &&
-             std::isfinite(rec.restitution) && isFinite(rec.bound.center) &&
-             std::isfinite(rec.bound.radius),
-         "a shape's material is not finite");
+    need(
+        std::isfinite(rec.density) && std::isfinite(rec.friction) && std::isfinite(rec.restitution),
+        "a shape's material is not finite");
   }
   for (const WorldState::Contact& c : s.contacts_) {
     bool finite =
@@ -517,6 +510,12 @@ void decode(ByteReader& r, WorldState& s) {
     need(s.sensorIndex_.emplace(pairKey(p.sensor, p.visitor), static_cast<std::int32_t>(k)).second,
          "a sensor pair twice");
   }
+  // What follows from the shapes is computed again, not read: the same bits as the world's
+  // (the same functions on the same shapes), and nothing a corrupt snapshot can make absurd.
+  for (WorldState::ShapeRecord& rec : s.shapes_)
+    if (rec.alive) rec.bound = computeBoundingCircle(rec.shape);
+  for (WorldState::Body& b : s.bodies_)
+    if (b.alive) s.massProperties(b);
 }
 
 }  // namespace

@@ -92,7 +92,9 @@ void World::step(float dt) {
                         s.pendingRefit_.end());
   for (std::int32_t index : s.pendingRefit_) {
     WorldState::Body& b = s.bodies_[static_cast<std::size_t>(index)];
-    if (b.alive && b.slot >= 0) s.refitBody(b, dt * s.velocityOf(b));
+    if (b.alive && b.slot >= 0)
+      s.refitBody(b, dt * s.velocityOf(b),
+                  b.round ? 0.0f : dt * s.v_[3 * static_cast<std::size_t>(b.slot) + 2]);
   }
   s.pendingRefit_.clear();
 
@@ -194,7 +196,7 @@ void WorldState::refit(float dt) {
     b.xf.p = {static_cast<float>(origin[0]), static_cast<float>(origin[1])};
     b.force = {};
     b.torque = 0.0f;
-    refitBody(b, dt * Vec2{v_[i], v_[i + 1]});  // where it goes next step
+    refitBody(b, dt * Vec2{v_[i], v_[i + 1]}, dt * v_[i + 2]);  // where it goes next step
   }
 }
 

@@ -173,8 +173,13 @@ class WorldState {
             static_cast<float>(q_[i + 2])};
   }
   bool isRound(const Body& b) const;  // see Body::round
+  // Mass, inertia, centre of mass, extents and roundness from the body's shapes; updateMass
+  // also keeps the body's origin and motion where they were when the centre moves.
   void updateMass(Body& b);
-  void refitBody(Body& b, Vec2 displacement);
+  void massProperties(Body& b) const;
+  // The body's proxies from its transform, stretched along its next step: displacement, and
+  // turn (radians) for the shapes the turn carries beyond the AABB margin.
+  void refitBody(Body& b, Vec2 displacement, float turn = 0.0f);
   void swapSlots(std::int32_t a, std::int32_t b);
 
   // ---- islands and sleep (island.cpp)

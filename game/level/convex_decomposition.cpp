@@ -55,7 +55,8 @@ bool inTriangle(P a, P b, P c, P p) {
   return orient(a, b, p) >= 0 && orient(b, c, p) >= 0 && orient(c, a, p) >= 0;
 }
 
-std::vector<P> cleaned(std::span<const rc::Vec2> polygon) {
+// The points without consecutive duplicates (the last equal to the first included).
+std::vector<P> distinct(std::span<const rc::Vec2> polygon) {
   std::vector<P> pts;
   for (const rc::Vec2 v : polygon) {
     const P p{v.x, v.y};
@@ -63,8 +64,12 @@ std::vector<P> cleaned(std::span<const rc::Vec2> polygon) {
   }
   while (pts.size() > 1 && pts.front().x == pts.back().x && pts.front().y == pts.back().y)
     pts.pop_back();
-  // Drop straight-through vertices until none is left; a vertex where the outline doubles back
-  // on itself is not simple.
+  return pts;
+}
+
+// Drops straight-through vertices until none is left; a vertex where the outline doubles back
+// on itself is not simple.
+void withoutStraights(std::vector<P>& pts) {
   bool changed = true;
   while (changed && pts.size() >= 3) {
     changed = false;
@@ -78,7 +83,6 @@ std::vector<P> cleaned(std::span<const rc::Vec2> polygon) {
       --i;
     }
   }
-  return pts;
 }
 
 void requireSimple(const std::vector<P>& pts) {
@@ -181,14 +185,19 @@ std::vector<std::vector<rc::Vec2>> decomposeConvex(std::span<const rc::Vec2> pol
   for (const rc::Vec2 v : polygon)
     if (!std::isfinite(v.x) || !std::isfinite(v.y))
       throw DecompositionError("has a vertex that is not finite");
-  std::vector<P> pts = cleaned(polygon);
+  std::vector<P> pts = distinct(polygon);
   if (pts.size() < 3) throw DecompositionError("has fewer than 3 distinct corners");
+  bool line = true;
+  for (std::size_t i = 2; i < pts.size() && line; ++i)
+    line = straight(pts[0], pts[1], pts[i]);
+  if (line) throw DecompositionError("has no area: its points lie on one line");
+  withoutStraights(pts);
+  requireSimple(pts);
   double area = 0;
   for (std::size_t i = 0; i < pts.size(); ++i)
     area += cross(pts[i], pts[(i + 1) % pts.size()]);
   if (area == 0) throw DecompositionError("has no area");
   if (area < 0) std::reverse(pts.begin(), pts.end());
-  requireSimple(pts);
 
   const std::vector<Triangle> triangles = earClip(pts);
   // Pieces start as the triangles; owner[t] is the piece that holds triangle t.

@@ -1,5 +1,6 @@
 #include "game/level/tile_outline.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -68,6 +69,9 @@ std::vector<std::vector<GridCorner>> traceOutlines(int width, int height,
         }
         // The start is a corner unless the loop arrives going its first way.
         if (dir != firstDir) loop.insert(loop.begin(), GridCorner{sx, sy});
+        // Traced with the solid on the right; handed back the other way round, solid on the
+        // left, which is the side a one-sided chain link does not collide on.
+        std::reverse(loop.begin() + 1, loop.end());
         loops.push_back(std::move(loop));
       }
     }

@@ -4,13 +4,12 @@
 // cannot).
 //
 // Contour tracing on the grid's corners: every side of a solid cell that faces an empty cell
-// (or the grid's edge) is a unit edge, directed so the solid cell is on its right in the
-// grid's y-down frame; edges chain end to start into closed loops, and straight runs merge
-// into one edge, so a 40x40 block is one loop of 4 corners and a block with a hole two loops.
-// Where two solid cells touch only at a corner, each keeps its own loop (the trace turns
-// towards the solid side it came along). Drawn with y up, as the level is, outer loops run
-// counter-clockwise and holes clockwise, with the solid always on the left: a one-sided chain
-// through the corners collides on the empty side.
+// (or the grid's edge) is a unit edge; edges chain end to start into closed loops, and straight
+// runs merge into one edge, so a 40x40 block is one loop of 4 corners and a block with a hole
+// two loops. Where two solid cells touch only at a corner, each keeps its own loop. Loops run
+// with the solid on their left as drawn (on screen with y down, and in the world with y up
+// alike): counter-clockwise around solid regions, clockwise around holes. A one-sided chain
+// through the corners (rc::makeChain) then collides on the empty side only.
 #pragma once
 
 #include <cstdint>

@@ -17,8 +17,10 @@ namespace game::json_fields {
 
 using Json = nlohmann::json;
 
-// Files larger than this are refused before parsing (the bundled levels are a few kB).
-inline constexpr std::uintmax_t kMaxFileBytes = 64u << 20;
+// Files larger than this are refused before parsing (the bundled levels are a few kB; the
+// largest map allowed, 2^22 tiles, is about 22 MiB of base64). The parsed tree takes several
+// times the file's size, so this bounds the reader's memory too.
+inline constexpr std::uintmax_t kMaxFileBytes = 32u << 20;
 // Deeper nesting than this is refused while parsing: a Tiled map needs about ten levels
 // (map, layers, groups, objects, points), and a deep file must not exhaust the stack later.
 inline constexpr int kMaxDepth = 64;

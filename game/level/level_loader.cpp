@@ -227,12 +227,21 @@ void loadObject(const TiledLayer& layer, const TiledObject& o, LoadState& s,
   s.level.objects.push_back(std::move(object));
 }
 
-std::size_t shapeCount(const Level& level) {
-  std::size_t n = 0;
-  for (const LevelObject& o : level.objects)
-    n += o.shapes.size();
-  return n;
-}
+// Counts what the level holds as it grows, and refuses a level with more shapes or things than
+// any game needs before a hostile file makes it allocate without bound.
+struct Budget {
+  std::size_t objectsCounted = 0, shapes = 0;
+  void check(const Level& level, const ErrorContext& at) {
+    for (; objectsCounted < level.objects.size(); ++objectsCounted)
+      shapes += level.objects[objectsCounted].shapes.size();
+    if (shapes > kMaxLevelShapes)
+      at.fail("the level has more than " + std::to_string(kMaxLevelShapes) + " shapes");
+    const std::size_t things = level.objects.size() + level.spawns.size() + level.pickups.size() +
+                               level.paths.size() + level.markers.size();
+    if (things > kMaxLevelShapes)
+      at.fail("the level has more than " + std::to_string(kMaxLevelShapes) + " objects");
+  }
+};
 
 }  // namespace
 
@@ -255,15 +264,16 @@ Level levelFromMap(const TiledMap& map) {
   settings.bounds = {units.point(0, static_cast<double>(map.height) * map.tileHeight),
                      units.point(static_cast<double>(map.width) * map.tileWidth, 0)};
   LoadState state{map, units, level};
+  Budget budget;
   for (const TiledLayer& layer : map.layers) {
     const ErrorContext layerAt = at.in("layer " + quoteName(layer.name));
     if (layer.kind == TiledLayer::Kind::tiles) appendTileWalls(map, layer, units, level, layerAt);
+    budget.check(level, layerAt);
     if (layer.kind == TiledLayer::Kind::objects)
-      for (const TiledObject& o : layer.objects)
+      for (const TiledObject& o : layer.objects) {
         loadObject(layer, o, state, layerAt);
-    if (shapeCount(level) > kMaxLevelShapes)
-      layerAt.fail("the level has more than " + std::to_string(kMaxLevelShapes) +
-                   " shapes so far (" + std::to_string(shapeCount(level)) + ")");
+        budget.check(level, layerAt);
+      }
   }
   return level;
 }

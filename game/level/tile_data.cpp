@@ -61,7 +61,7 @@ std::vector<std::uint8_t> inflateExactly(std::span<const std::uint8_t> compresse
                                          const ErrorContext& at) {
   const char* name = compression == TileCompression::gzip ? "gzip" : "zlib";
   if (compression == TileCompression::none) return {compressed.begin(), compressed.end()};
-  // Both lengths fit zlib's 32-bit counters: the file is at most 64 MiB and a layer at most
+  // Both lengths fit zlib's 32-bit counters: the file is at most 32 MiB and a layer at most
   // 2^22 tiles (16 MiB of gids).
   std::vector<std::uint8_t> out(size + 1);  // one byte more shows data beyond the expected size
   z_stream zs{};

@@ -287,6 +287,14 @@ TEST_F(BadMap, HostileSizesAndNumbers) {
   deep.insert(deep.size() - 1,
               ", \"extra\": " + std::string(100000, '[') + std::string(100000, ']'));
   errorOfText(deep, {"JSON nested deeper than 64 levels"});
+  // A checkerboard of 600 x 600 tiles would be 720,000 chain links: refused before tracing.
+  m = baseMap();
+  m["width"] = m["height"] = m["layers"][0]["width"] = m["layers"][0]["height"] = 600;
+  json board = json::array();
+  for (int i = 0; i < 600 * 600; ++i)
+    board.push_back(((i / 600) + i) % 2);
+  m["layers"][0]["data"] = board;
+  errorOf(m, {"layer 'walls': the layer's solid tiles make 720000 shapes, more than the 262144"});
   // Group layers inside group layers.
   m = baseMap();
   json group = m["layers"][1];

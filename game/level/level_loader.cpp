@@ -75,7 +75,8 @@ Placed placeOutline(const TiledObject& o, const MapUnits& u) {
   Placed p;
   p.position = u.point(o.x, o.y);
   p.angle = bodyAngle(turn);
-  std::vector<rc::Vec2> points = localPoints(o, turn, u);
+  // Quarter turns go into the points; any other turn is the body's angle.
+  std::vector<rc::Vec2> points = localPoints(o, turn.exact ? turn : Turn{}, u);
   if (o.shape == TiledShape::polygon) {
     appendPolygonShapes(points, p.shapes);
     return p;

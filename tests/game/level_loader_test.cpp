@@ -9,6 +9,7 @@
 
 #include "game/level/level_builder.h"
 #include "game/level/level_loader.h"
+#include "game/level/tiled_reader.h"
 #include "level_test_support.h"
 
 namespace {
@@ -302,6 +303,75 @@ TEST(LevelBuilder, BallsBounceInsideMergedWalls) {
           << "ball " << i << " left through the border, at (" << p.x << ", " << p.y << ")";
       EXPECT_GT(path[i], 5.0f) << "ball " << i << " is stuck at (" << p.x << ", " << p.y << ")";
     }
+  }
+}
+
+// Tiled turns every object about its (x, y): a rectangle, the same rectangle drawn as a
+// polygon, and an ellipse in the same box, turned alike, land on the same place, whether the
+// turn is a quarter (exact) or any other angle (the body's).
+TEST(LevelLoader, RotatedObjectsTurnAboutTheirOrigin) {
+  for (const double degrees : {0.0, 30.0, 90.0, 180.0, 270.0, -45.0, 395.0}) {
+    SCOPED_TRACE("rotation " + std::to_string(degrees));
+    const std::string r = std::to_string(degrees);
+    const std::string text = R"({"type": "map", "orientation": "orthogonal", "width": 20,
+      "height": 20, "tilewidth": 32, "tileheight": 32, "layers": [{"id": 1, "name": "o",
+      "type": "objectgroup", "objects": [
+        {"id": 1, "x": 100, "y": 120, "width": 64, "height": 32, "rotation": )" +
+                             r + R"(},
+        {"id": 2, "x": 100, "y": 120, "rotation": )" +
+                             r + R"(, "polygon": [{"x": 0, "y": 0},
+          {"x": 64, "y": 0}, {"x": 64, "y": 32}, {"x": 0, "y": 32}]},
+        {"id": 3, "x": 100, "y": 120, "width": 64, "height": 32, "ellipse": true,
+         "rotation": )" + r + R"(},
+        {"id": 4, "x": 100, "y": 120, "rotation": )" +
+                             r + R"(, "polyline": [{"x": 0, "y": 0},
+          {"x": 64, "y": 0}, {"x": 64, "y": 32}]}]}]})";
+    const Level level = game::levelFromMap(game::parseTiledMap(text, "turns.tmj", "."));
+    rc::World world(game::levelWorldDef(level));
+    const game::BuiltLevel built = game::buildLevel(level, world);
+    // The corners by hand: (x, y) + R(clockwise) (dx, dy), in pixels, then y flipped.
+    const double c = std::cos(degrees * 3.14159265358979 / 180),
+                 s = std::sin(degrees * 3.14159265358979 / 180);
+    auto corner = [&](double dx, double dy) {
+      return rc::Vec2{static_cast<float>((100 + dx * c - dy * s) / 32),
+                      static_cast<float>(-(120 + dx * s + dy * c) / 32)};
+    };
+    const rc::Vec2 expected[4] = {corner(0, 0), corner(64, 0), corner(64, 32), corner(0, 32)};
+    // The box's corners, the polygon's vertices and the polyline's points, in the world.
+    const rc::Transform box = world.transform(built.bodies[0]);
+    const rc::Box& b = world.shape(world.shapesOf(built.bodies[0])[0]).box;
+    std::vector<rc::Vec2> boxCorners;
+    for (const rc::Vec2 k : {rc::Vec2{-1, 1}, rc::Vec2{1, 1}, rc::Vec2{1, -1}, rc::Vec2{-1, -1}})
+      boxCorners.push_back(
+          rc::apply(box, {b.center.x + k.x * b.halfExtents.x, b.center.y + k.y * b.halfExtents.y}));
+    const rc::Transform poly = world.transform(built.bodies[1]);
+    const rc::Polygon& pg = world.shape(world.shapesOf(built.bodies[1])[0]).polygon;
+    ASSERT_EQ(pg.count, 4);
+    const rc::Transform line = world.transform(built.bodies[3]);
+    const auto links = world.shapesOf(built.bodies[3]);
+    ASSERT_EQ(links.size(), 2u);
+    const rc::Vec2 linePoints[3] = {
+        rc::apply(line, world.shape(links[0]).chainSegment.segment.point1),
+        rc::apply(line, world.shape(links[1]).chainSegment.segment.point1),
+        rc::apply(line, world.shape(links[1]).chainSegment.segment.point2)};
+    for (int i = 0; i < 3; ++i)
+      expectNear(linePoints[i], expected[i], 1e-5f);
+    for (const rc::Vec2 e : expected) {
+      auto nearest = [&](const auto& points) {
+        float best = 1e9f;
+        for (const rc::Vec2 q : points)
+          best = std::min(best, std::hypot(q.x - e.x, q.y - e.y));
+        return best;
+      };
+      std::vector<rc::Vec2> polyCorners;
+      for (int i = 0; i < pg.count; ++i)
+        polyCorners.push_back(rc::apply(poly, pg.vertices[i]));
+      EXPECT_LT(nearest(boxCorners), 1e-5f);
+      EXPECT_LT(nearest(polyCorners), 1e-5f);
+    }
+    const rc::Vec2 centre = 0.5f * (expected[0] + expected[2]);
+    expectNear(world.worldCenter(built.bodies[0]), centre, 1e-5f);
+    expectNear(world.worldCenter(built.bodies[2]), centre, 1e-5f);
   }
 }
 

@@ -73,6 +73,25 @@ TEST(LevelLoader, CorridorsAsCountedByHand) {
   expectNear(boxes[0].halfExtents, {0.5f, 0.125f});
   expectNear(boxes[1].center, {25.5f, -10.5f});
   expectNear(boxes[1].halfExtents, {0.125f, 0.5f});
+  // The corner tiles: the triangle (0,0) (32,0) (0,32) of the tile, flipped horizontally at
+  // column 38, row 1 (the top-right corner of the cell) and vertically at column 1, row 22
+  // (the bottom-left).
+  std::vector<std::vector<rc::Vec2>> triangles;
+  for (const rc::Shape& s : walls.shapes)
+    if (s.type == ShapeType::polygon)
+      triangles.push_back({s.polygon.vertices, s.polygon.vertices + s.polygon.count});
+  const std::vector<std::vector<rc::Vec2>> corners = {{{39, -1}, {38, -1}, {39, -2}},
+                                                      {{1, -23}, {2, -23}, {1, -22}}};
+  ASSERT_EQ(triangles.size(), 2u);
+  for (std::size_t t = 0; t < 2; ++t) {
+    ASSERT_EQ(triangles[t].size(), 3u);
+    for (const rc::Vec2 want : corners[t]) {
+      bool found = false;
+      for (const rc::Vec2 v : triangles[t])
+        found = found || (std::fabs(v.x - want.x) < kEps && std::fabs(v.y - want.y) < kEps);
+      EXPECT_TRUE(found) << "triangle " << t << " lacks (" << want.x << ", " << want.y << ")";
+    }
+  }
   // The pillar: an ellipse (4, 4, 24, 24) in the tile at column 5, row 11.
   for (const rc::Shape& s : walls.shapes)
     if (s.type == ShapeType::circle) {

@@ -13,4 +13,7 @@ int runDemo(std::span<const std::string_view> args);
 // `ricochet sim SCENE.json --steps N ...`: steps a scene file, writes the final state.
 int runSim(std::span<const std::string_view> args);
 
+// `ricochet level LEVEL.tmj [--json]`: reads a Tiled level, builds it, prints what it holds.
+int runLevel(std::span<const std::string_view> args);
+
 }  // namespace game

@@ -12,6 +12,7 @@ constexpr const char* kUsage =
     "commands:\n"
     "  demo      run the geometry demo and print results beside hand-worked values\n"
     "  sim       step a scene file and write the final state (and a trajectory)\n"
+    "  level     read a Tiled level, build its world and say what it holds\n"
     "\n"
     "ricochet <command> --help shows a command's options.\n";
 
@@ -31,6 +32,7 @@ int main(int argc, char** argv) {
   std::span<const std::string_view> rest(args.data() + 1, args.size() - 1);
   if (command == "demo") return game::runDemo(rest);
   if (command == "sim") return game::runSim(rest);
+  if (command == "level") return game::runLevel(rest);
   std::fprintf(stderr, "ricochet: unknown command '%.*s' (try ricochet --help)\n",
                static_cast<int>(command.size()), command.data());
   return 2;

@@ -226,13 +226,15 @@ RC_INLINE void setNormal(const Batch<N>& c, Velocities<N>& v, PointLanes<N>& p,
   v.apply(c, applied, c.nx, c.ny, p.rnA, p.rnB);
 }
 
-// One point alone: l + (-m s_m (vn + b) - s_i l), clamped to push only.
+// One point alone: l + (-m s_m (vn + b) - s_i l), clamped to push only; a held point may only
+// give impulse back.
 template <int N>
 RC_INLINE typename simd::Lanes<N>::F alone(const PointLanes<N>& p, typename simd::Lanes<N>::F vn,
                                            const PointRegime<N>& r) {
   using F = typename simd::Lanes<N>::F;
   const F impulse = -p.normalMass * r.massScale * (vn + r.bias) - r.impulseScale * p.normalImpulse;
-  return select(r.held, p.normalImpulse, vmax(p.normalImpulse + impulse, F{}));
+  const F total = vmax(p.normalImpulse + impulse, F{});
+  return select(r.held, vmin(total, p.normalImpulse), total);
 }
 
 template <int N>
@@ -270,14 +272,17 @@ RC_INLINE void solveBatch(Batch<N>& c, SolverBody* bodies, const ContactSoftness
     r.bias = select(apart, s * soft.invH, select(r.isSoft, push, select(biasLanes, settle, F{})));
     r.massScale = select(r.isSoft, splat<F>(soft.massScale), splat<F>(1.0f));
     r.impulseScale = select(r.isSoft, splat<F>(soft.impulseScale), F{});
-    // The relax pass leaves a point still apart by more than the slop as the solve pass left
-    // it. Its gap is now the one the next substep's motion will close, so a push here stops an
-    // approach before the next substep's free motion adds to it: restitution then reverses
-    // the approach of a substep too early (a ball dropped 10 m bounced back from 14.083 m/s,
-    // where the substep that reaches the floor moves at 14.125, and 0.6% of the bounce height
-    // was lost), and a push in the last substep bounced the ball from up to v h above the
-    // floor. The next substep's solve pass stops it instead, at the speed it arrives with.
-    // Within the slop (resting contacts hover there) the relax pass solves as before.
+    // The relax pass does not push a point still apart by more than the slop. Its gap is now
+    // the one the next substep's motion will close, so a push here stops an approach before
+    // the next substep's free motion adds to it: restitution then reverses the approach of a
+    // substep too early (a ball dropped 10 m bounced back from 14.083 m/s, where the substep
+    // that reaches the floor moves at 14.125, and 0.6% of the bounce height was lost), and a
+    // push in the last substep bounced the ball from up to v h above the floor. The next
+    // substep's solve pass stops it instead, at the speed it arrives with. It may still take
+    // back what the solve pass gave it: in a row of touching bodies the order of the solve
+    // can leave a point separating with an impulse still on it, and kept, that impulse is
+    // energy the contact made. Within the slop (resting contacts hover there) the relax pass
+    // solves as before.
     r.held = ~biasLanes & (s > kLinearSlop);
   }
 

@@ -139,6 +139,9 @@ class WorldState {
   void applyRestitution();
   template <class Solve>
   void forEachBouncy(Solve&& solve);
+  void prepareBounceGroups();
+  void measureContactWork();
+  void limitBounceEnergy();
   void accelerations(std::span<const double> q, std::span<const float> v, float t,
                      std::span<float> a);
 
@@ -207,6 +210,27 @@ class WorldState {
   std::vector<ConstraintBodies> constraintBodies_;
   std::vector<ContactConstraint> bouncy_;
   std::vector<std::int32_t> bouncyIndex_;
+  // Restitution's energy budget (limitBounceEnergy): the bodies joined to a bouncy constraint
+  // by touching contacts, in groups; per group what the contacts did to its kinetic energy
+  // over the substeps (J), the terms of its energy as a function of how much of the bounce is
+  // applied, the fraction kept, its highest restitution, and whether a kinematic body drives
+  // it. Per tracked body its slot, group, mass and rotational inertia; its velocity before
+  // restitution (3 each). Per constraint its group (-1: none, -2: left out).
+  struct BounceGroup {
+    double work = 0, bounceSquare = 0, bounceCross = 0, kept = 1;
+    float restitution = 0;
+    bool driven = false;
+  };
+  struct TrackedBody {
+    std::int32_t slot, group;
+    float mass, inertia;
+  };
+  std::vector<BounceGroup> bounceGroups_;
+  std::vector<TrackedBody> tracked_;
+  std::vector<float> beforeBounce_;
+  std::vector<std::int32_t> constraintGroup_;
+  std::vector<std::int32_t> slotParent_, rootGroup_;  // per awake slot, while grouping
+  std::vector<std::uint8_t> slotDegree_;
   ContactSolver contactSolver_;
   // Per slot during the solve: the free-motion velocities of the substep, and the solver's
   // bodies (velocity, and how far each has moved and turned since the constraints were

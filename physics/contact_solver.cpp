@@ -43,7 +43,7 @@ struct Batch {
   using M = typename simd::Lanes<N>::M;
   std::int32_t a[N], b[N];
   F invMassA, invIA, invMassB, invIB;
-  F nx, ny, friction;
+  F nx, ny, friction, maxPushout;
   F k11, k12, k22, i11, i12, i22;
   M block;  // the lane's two points may be solved together
   PointLanes<N> p[2];
@@ -262,7 +262,7 @@ RC_INLINE void solveBatch(Batch<N>& c, SolverBody* bodies, const ContactSoftness
     const F s = dx * c.nx + dy * c.ny + p.baseSeparation;
     const M apart = s > 0.0f;
     r.isSoft = ~apart & (s <= -kLinearSlop) & biasLanes;
-    const F push = vmax(soft.biasRate * s, splat<F>(-soft.maxPushout));
+    const F push = vmax(soft.biasRate * s, -c.maxPushout);
     // Inside the slop, rigid, but pushed out towards half of it at the soft bias rate (the relax
     // pass takes the push's velocity back out): what a stack took in while it settled comes back
     // out, where a rigid contact alone keeps it (base-40 pyramid's top 0.074 -> 0.046 m below
@@ -433,6 +433,7 @@ void writeLane(Batch<N>& b, int l, const ContactConstraint& cc) {
   b.nx[l] = cc.normal.x;
   b.ny[l] = cc.normal.y;
   b.friction[l] = cc.friction;
+  b.maxPushout[l] = cc.maxPushout;
   b.block[l] = cc.pointCount == 2 ? -1 : 0;
   for (int k = 0; k < b.points; ++k) {
     PointLanes<N>& p = b.p[k];
@@ -528,7 +529,7 @@ void masses4(std::span<Batch<4>> batches) {
 
 }  // namespace
 
-ContactSoftness ContactSoftness::make(float h, float hertz, float dampingRatio, float maxPushout) {
+ContactSoftness ContactSoftness::make(float h, float hertz, float dampingRatio) {
   const float omega = 2.0f * kPi * std::min(hertz, 0.25f / h), zeta = dampingRatio;
   const float a1 = 2.0f * zeta + h * omega, a2 = h * omega * a1, a3 = 1.0f / (1.0f + a2);
   ContactSoftness s;
@@ -536,7 +537,6 @@ ContactSoftness ContactSoftness::make(float h, float hertz, float dampingRatio, 
   s.biasRate = omega / a1;
   s.massScale = a2 * a3;
   s.impulseScale = a3;
-  s.maxPushout = maxPushout;
   s.invMassScale = 1.0f / s.massScale;
   s.carry = (1.0f - s.impulseScale) * s.invMassScale;
   return s;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "physics/constants.h"
 #include "physics/world.h"
 #include "physics/world_state.h"
 
@@ -59,7 +60,7 @@ void WorldState::solve(float dt) {
   prepareBodies();
   const float h = dt / static_cast<float>(def_.substeps);
   const ContactSoftness soft =
-      ContactSoftness::make(h, def_.contactHertz, def_.contactDampingRatio, def_.maxPushoutSpeed);
+      ContactSoftness::make(h, def_.contactHertz, def_.contactDampingRatio);
   for (int sub = 0; sub < def_.substeps; ++sub) {
     integrateFreeMotion(sub, h);
     warmStart();
@@ -87,6 +88,8 @@ void WorldState::prepareContacts() {
   tracked_.clear();
   profile_.colours = profile_.overflow = 0;
   if (awakeCount_ == 0) return;
+  // anyDeep: a contact overlapping past the slop; shared: a body with two of them.
+  bool anyDeep = false, shared = false;
   for (std::size_t ci = 0; ci < contacts_.size(); ++ci) {
     const Contact& c = contacts_[ci];
     if (!c.touching) continue;
@@ -96,9 +99,23 @@ void WorldState::prepareContacts() {
     const Body& b = bodies_[static_cast<std::size_t>(bodyB)];
     const std::int32_t slotA = awake(a) ? a.slot : -1, slotB = awake(b) ? b.slot : -1;
     if (slotA < 0 && slotB < 0) continue;  // asleep against asleep or static
+    const bool movesA = a.invMass > 0.0f || a.invInertia > 0.0f;
+    const bool movesB = b.invMass > 0.0f || b.invInertia > 0.0f;
     constraintSources_.push_back({static_cast<std::int32_t>(ci), bodyA, bodyB});
-    constraintBodies_.push_back({slotA, slotB, a.invMass > 0.0f || a.invInertia > 0.0f,
-                                 b.invMass > 0.0f || b.invInertia > 0.0f, c.manifold.pointCount});
+    constraintBodies_.push_back({slotA, slotB, movesA, movesB, c.manifold.pointCount});
+    // The push-out speed is a body's, not each contact's: a body overlapping k others past the
+    // slop is pushed out of each at 1/k of it, so that together they push it no faster than the
+    // push-out speed (what the relax pass cannot take back of a push stays in the body as
+    // speed). The counts start at the first such contact.
+    const float deepest = c.manifold.pointCount == 2 ? std::min(c.manifold.points[0].separation,
+                                                                c.manifold.points[1].separation)
+                                                     : c.manifold.points[0].separation;
+    if (deepest < -kLinearSlop) {
+      if (!anyDeep) slotOverlaps_.assign(static_cast<std::size_t>(awakeCount_), 0);
+      anyDeep = true;
+      for (const std::int32_t slot : {movesA ? slotA : -1, movesB ? slotB : -1})
+        if (slot >= 0) shared = ++slotOverlaps_[static_cast<std::size_t>(slot)] > 1 || shared;
+    }
   }
   contactSolver_.prepare(constraintBodies_, awakeCount_);
   profile_.colours = contactSolver_.colourCount();
@@ -122,6 +139,14 @@ void WorldState::prepareContacts() {
     cc.normal = c.manifold.normal;
     cc.friction = c.friction;
     cc.restitution = c.restitution;
+    // Its share of the push-out speed (see above).
+    cc.maxPushout = def_.maxPushoutSpeed;
+    if (shared) {
+      const std::int32_t kA = cc.slotA >= 0 ? slotOverlaps_[static_cast<std::size_t>(cc.slotA)] : 0;
+      const std::int32_t kB = cc.slotB >= 0 ? slotOverlaps_[static_cast<std::size_t>(cc.slotB)] : 0;
+      const std::int32_t shares = std::max(kA, kB);
+      if (shares > 1) cc.maxPushout /= static_cast<float>(shares);
+    }
     cc.pointCount = c.manifold.pointCount;
     const Vec2 offsetA = rotate(a.xf.q, a.localCenter), offsetB = rotate(b.xf.q, b.localCenter);
     const Vec2 vA = cc.slotA >= 0 ? Vec2{v_[3 * static_cast<std::size_t>(cc.slotA)],

@@ -59,8 +59,9 @@ class WorldState {
     float linearDamping = 0, angularDamping = 0, gravityScale = 1;
     float minExtent = 0, maxExtent = 0;  // for continuous collision (see continuous())
     bool allowSleep = true;
-    float sleepTime = 0;       // how long it has been slower than the sleep tolerances
-    std::int32_t island = -1;  // its sleeping island, -1 while awake
+    float sleepTime = 0;                // how long it has been still (see updateSleep)
+    std::array<double, 2> stillFrom{};  // its centre of mass when it became still
+    std::int32_t island = -1;           // its sleeping island, -1 while awake
     std::uint64_t userData = 0;
     std::int32_t slot = -1;  // in q_ and v_; -1 for static bodies
     // Every shape a circle about the centre of mass: turning moves none of its contact
@@ -208,6 +209,9 @@ class WorldState {
   };
   std::vector<ConstraintSource> constraintSources_;
   std::vector<ConstraintBodies> constraintBodies_;
+  // Per awake slot: how many constraints overlapping past the slop when the step began move it
+  // (see prepareContacts: each pushes it out at its share of the push-out speed).
+  std::vector<std::int32_t> slotOverlaps_;
   std::vector<ContactConstraint> bouncy_;
   std::vector<std::int32_t> bouncyIndex_;
   // Restitution's energy budget (limitBounceEnergy): the bodies joined to a bouncy constraint

@@ -249,3 +249,125 @@ TEST(Restitution, StruckClustersNeverGainEnergy) {
 }
 
 }  // namespace
+
+// ------------------------------------------------------------------ bodies born overlapping
+
+// A pile of `count` 1 m circles or boxes born at one point (or within `spread` of it), floating
+// or on a ground whose top is at y = 0, stepped for `steps` steps: the fastest any body moved,
+// the highest any centre rose, when every contact first came within the slop (-1: never), and
+// the first step at which a body was asleep while a contact was deeper than the slop (-1:
+// never). The push-out speed is WorldDef's default, 3 m/s.
+struct PileRun {
+  float fastest = 0, top = -1e9f;
+  int withinSlop = -1, asleepOverlapping = -1;
+};
+PileRun pushApart(int count, bool boxes, float spread, bool onGround, int steps) {
+  rc::WorldDef def;
+  if (!onGround) def.gravity = {0, 0};
+  rc::World w(def);
+  if (onGround) w.createShape(w.createBody({}), rc::makeBox(500, 10, {0, -10}));
+  rc::Random rng(7);
+  std::vector<BodyId> pile;
+  for (int i = 0; i < count; ++i) {
+    rc::BodyDef bd;
+    bd.type = rc::BodyType::dynamicBody;
+    bd.position = Vec2{0, onGround ? 0.5f : 0.0f} + rng.inBox({-spread, -spread}, {spread, spread});
+    pile.push_back(w.createBody(bd));
+    if (boxes)
+      w.createShape(pile.back(), rc::makeBox(0.5f, 0.5f));
+    else
+      w.createShape(pile.back(), rc::makeCircle({}, 0.5f));
+  }
+  PileRun run;
+  for (int i = 0; i < steps; ++i) {
+    w.step(1.0f / 60.0f);
+    bool asleep = false;
+    for (BodyId b : pile) {
+      run.fastest = std::max(run.fastest, rc::length(w.linearVelocity(b)));
+      run.top = std::max(run.top, w.position(b).y);
+      asleep = asleep || !w.isAwake(b);
+    }
+    float deepest = 0;
+    for (const rc::World::ContactPointView& p : w.contactPoints())
+      deepest = std::min(deepest, p.separation);
+    if (run.withinSlop < 0 && deepest >= -rc::kLinearSlop) run.withinSlop = i;
+    if (run.asleepOverlapping < 0 && asleep && deepest < -rc::kLinearSlop)
+      run.asleepOverlapping = i;
+  }
+  return run;
+}
+
+std::string describe(int count, bool boxes, float spread, bool onGround) {
+  return std::to_string(count) + (boxes ? " boxes" : " circles") +
+         (spread == 0 ? " at one point" : " within 1 mm") + (onGround ? " on the ground" : "");
+}
+
+// Two circles or boxes born at one point are pushed apart no faster than the push-out speed
+// (their centres part at 2.83 m/s at most: the soft contact's bias, capped at 3 m/s), come apart
+// within 2 s, and do not fall asleep while still overlapping past the slop (the push-out moves
+// them by their positions, and at rest at the end of every step they look still). On the
+// ground the one pushed up may fall off the other: up to the cap plus a fall of 1 m.
+TEST(OverlapRecovery, CoincidentPairSeparatesAtThePushOutSpeed) {
+  const float cap = rc::WorldDef{}.maxPushoutSpeed;
+  for (bool boxes : {false, true}) {
+    for (bool onGround : {false, true}) {
+      const PileRun run = pushApart(2, boxes, 0.0f, onGround, 600);
+      const std::string what = describe(2, boxes, 0.0f, onGround);
+      EXPECT_LE(run.fastest, onGround ? cap + std::sqrt(2.0f * 10.0f * 1.0f) : cap) << what;
+      EXPECT_GE(run.withinSlop, 0) << what;
+      EXPECT_LT(run.withinSlop, 120) << what;
+      EXPECT_EQ(run.asleepOverlapping, -1) << what;
+    }
+  }
+}
+
+// Piles of 10 and 50 circles or boxes born at one point or within 1 mm of it, floating: no body
+// moves faster than the push-out speed (3 m/s), within 30 s every contact is within the slop,
+// and no body falls asleep before. A body overlapping k others is pushed out of each at 1/k of
+// the speed, and shapes born at one point are pushed apart as if each were a fraction of a
+// millimetre from it in a direction of its own; 50 bodies take about 11 s to come apart.
+TEST(OverlapRecovery, FloatingPilesSpreadNoFasterThanThePushOut) {
+  const float cap = rc::WorldDef{}.maxPushoutSpeed;
+  for (int count : {10, 50}) {
+    for (bool boxes : {false, true}) {
+      for (float spread : {0.0f, 0.001f}) {
+        const PileRun run = pushApart(count, boxes, spread, false, 1800);
+        const std::string what = describe(count, boxes, spread, false);
+        std::printf("%s: fastest %.2f m/s, within the slop after %d steps\n", what.c_str(),
+                    static_cast<double>(run.fastest), run.withinSlop);
+        EXPECT_LE(run.fastest, cap) << what;
+        EXPECT_GE(run.withinSlop, 0) << what;
+        EXPECT_EQ(run.asleepOverlapping, -1) << what;
+      }
+    }
+  }
+}
+
+// The same piles on the ground. Bodies pushed up onto the pile may fall back down, so the bound
+// is the push-out speed plus a fall from the highest point any centre reached, and the pile
+// rises no higher than a pyramid of its bodies (10 rows for 50). The circles do not sleep
+// overlapping past the slop. (Boxes at rest under the pile carry it on soft contacts 6 to 16 mm
+// deep, where such a load settles (see World.HeavyBoxOnTwoLightBoxesHolds), and sleep there, as
+// a tall pyramid does.)
+TEST(OverlapRecovery, PilesOnTheGroundSpreadNoFasterThanThePushOutAndAFall) {
+  const float cap = rc::WorldDef{}.maxPushoutSpeed;
+  for (int count : {10, 50}) {
+    int rows = 1;
+    while (rows * (rows + 1) / 2 < count)
+      ++rows;
+    for (bool boxes : {false, true}) {
+      for (float spread : {0.0f, 0.001f}) {
+        const PileRun run = pushApart(count, boxes, spread, true, 1800);
+        const std::string what = describe(count, boxes, spread, true);
+        const float fall = std::sqrt(2.0f * 10.0f * std::max(run.top - 0.5f, 0.0f));
+        std::printf("%s: fastest %.2f m/s, highest centre %.2f m\n", what.c_str(),
+                    static_cast<double>(run.fastest), static_cast<double>(run.top));
+        EXPECT_LE(run.top, static_cast<float>(rows) - 0.5f) << what;
+        EXPECT_LE(run.fastest, cap + fall) << what;
+        if (!boxes) {
+          EXPECT_EQ(run.asleepOverlapping, -1) << what;
+        }
+      }
+    }
+  }
+}

@@ -2,12 +2,27 @@
 // speculative points and their foresight), contact events.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "physics/collide.h"
 #include "physics/world.h"
 #include "physics/world_state.h"
 
 namespace rc {
+
+namespace {
+
+// Where a shape is taken to be, relative to where it is, when its centre coincides with
+// another's (see narrowphase()): a point of the R2 sequence (Roberts' plastic-number
+// sequence, in 32-bit fixed point), distinct for every shape index, scaled to 0.4 mm.
+Vec2 coincidenceOffset(std::int32_t shape) {
+  const auto i = static_cast<std::uint32_t>(shape);
+  const std::uint32_t x = i * 0xC13FA9A9u, y = i * 0x91E10DA6u;  // frac(i a1), frac(i a2)
+  constexpr float kScale = 4e-4f / 4294967296.0f;
+  return {kScale * static_cast<float>(x) - 2e-4f, kScale * static_cast<float>(y) - 2e-4f};
+}
+
+}  // namespace
 
 void WorldState::updatePairs() {
   broadphase_.updatePairs(newPairs_);
@@ -207,6 +222,18 @@ void WorldState::narrowphase(float dt) {
         m.points[0].separation > kSpeculativeDistance &&
         (m.pointCount == 1 || m.points[1].separation > kSpeculativeDistance))
       foresee(c.manifold, ra, xfA, rb, xfB, dt);
+    // Shapes whose centres coincide give no direction to be pushed apart in: the geometry
+    // picks the same one for every such pair (up for two circles, a fixed face for two
+    // polygons), which lines a pile of them up along one line. Each shape is taken instead to
+    // be a fraction of a millimetre from where it is, in a direction of its own: one offset per
+    // shape, so that the pairs' directions fit one arrangement of the bodies (directions of
+    // each pair's own ask for motions that no bodies can make at once).
+    if (m.pointCount > 0 && m.points[0].separation < -kLinearSlop &&
+        rotate(xfA.q, ra.bound.center) == xfB.p + rotate(xfB.q, rb.bound.center)) {
+      const Vec2 offset = coincidenceOffset(c.shapeB) - coincidenceOffset(c.shapeA);
+      ::new (static_cast<void*>(&c.manifold))
+          Manifold(collide(ra.shape, xfA, rb.shape, {xfB.p + offset, xfB.q}, margin));
+    }
     for (int k = 0; k < c.manifold.pointCount; ++k)
       c.manifold.points[k].point += bodyA.xf.p;
     // Warm start: a point keeps last step's impulses when the same features touch.

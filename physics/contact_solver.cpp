@@ -43,7 +43,7 @@ struct Batch {
   using M = typename simd::Lanes<N>::M;
   std::int32_t a[N], b[N];
   F invMassA, invIA, invMassB, invIB;
-  F nx, ny, friction;
+  F nx, ny, friction, maxPushout;
   F k11, k12, k22, i11, i12, i22;
   M block;  // the lane's two points may be solved together
   PointLanes<N> p[2];
@@ -226,13 +226,15 @@ RC_INLINE void setNormal(const Batch<N>& c, Velocities<N>& v, PointLanes<N>& p,
   v.apply(c, applied, c.nx, c.ny, p.rnA, p.rnB);
 }
 
-// One point alone: l + (-m s_m (vn + b) - s_i l), clamped to push only.
+// One point alone: l + (-m s_m (vn + b) - s_i l), clamped to push only; a held point may only
+// give impulse back.
 template <int N>
 RC_INLINE typename simd::Lanes<N>::F alone(const PointLanes<N>& p, typename simd::Lanes<N>::F vn,
                                            const PointRegime<N>& r) {
   using F = typename simd::Lanes<N>::F;
   const F impulse = -p.normalMass * r.massScale * (vn + r.bias) - r.impulseScale * p.normalImpulse;
-  return select(r.held, p.normalImpulse, vmax(p.normalImpulse + impulse, F{}));
+  const F total = vmax(p.normalImpulse + impulse, F{});
+  return select(r.held, vmin(total, p.normalImpulse), total);
 }
 
 template <int N>
@@ -260,7 +262,7 @@ RC_INLINE void solveBatch(Batch<N>& c, SolverBody* bodies, const ContactSoftness
     const F s = dx * c.nx + dy * c.ny + p.baseSeparation;
     const M apart = s > 0.0f;
     r.isSoft = ~apart & (s <= -kLinearSlop) & biasLanes;
-    const F push = vmax(soft.biasRate * s, splat<F>(-soft.maxPushout));
+    const F push = vmax(soft.biasRate * s, -c.maxPushout);
     // Inside the slop, rigid, but pushed out towards half of it at the soft bias rate (the relax
     // pass takes the push's velocity back out): what a stack took in while it settled comes back
     // out, where a rigid contact alone keeps it (base-40 pyramid's top 0.074 -> 0.046 m below
@@ -270,14 +272,17 @@ RC_INLINE void solveBatch(Batch<N>& c, SolverBody* bodies, const ContactSoftness
     r.bias = select(apart, s * soft.invH, select(r.isSoft, push, select(biasLanes, settle, F{})));
     r.massScale = select(r.isSoft, splat<F>(soft.massScale), splat<F>(1.0f));
     r.impulseScale = select(r.isSoft, splat<F>(soft.impulseScale), F{});
-    // The relax pass leaves a point still apart by more than the slop as the solve pass left
-    // it. Its gap is now the one the next substep's motion will close, so a push here stops an
-    // approach before the next substep's free motion adds to it: restitution then reverses
-    // the approach of a substep too early (a ball dropped 10 m bounced back from 14.083 m/s,
-    // where the substep that reaches the floor moves at 14.125, and 0.6% of the bounce height
-    // was lost), and a push in the last substep bounced the ball from up to v h above the
-    // floor. The next substep's solve pass stops it instead, at the speed it arrives with.
-    // Within the slop (resting contacts hover there) the relax pass solves as before.
+    // The relax pass does not push a point still apart by more than the slop. Its gap is now
+    // the one the next substep's motion will close, so a push here stops an approach before
+    // the next substep's free motion adds to it: restitution then reverses the approach of a
+    // substep too early (a ball dropped 10 m bounced back from 14.083 m/s, where the substep
+    // that reaches the floor moves at 14.125, and 0.6% of the bounce height was lost), and a
+    // push in the last substep bounced the ball from up to v h above the floor. The next
+    // substep's solve pass stops it instead, at the speed it arrives with. It may still take
+    // back what the solve pass gave it: in a row of touching bodies the order of the solve
+    // can leave a point separating with an impulse still on it, and kept, that impulse is
+    // energy the contact made. Within the slop (resting contacts hover there) the relax pass
+    // solves as before.
     r.held = ~biasLanes & (s > kLinearSlop);
   }
 
@@ -428,6 +433,7 @@ void writeLane(Batch<N>& b, int l, const ContactConstraint& cc) {
   b.nx[l] = cc.normal.x;
   b.ny[l] = cc.normal.y;
   b.friction[l] = cc.friction;
+  b.maxPushout[l] = cc.maxPushout;
   b.block[l] = cc.pointCount == 2 ? -1 : 0;
   for (int k = 0; k < b.points; ++k) {
     PointLanes<N>& p = b.p[k];
@@ -523,7 +529,7 @@ void masses4(std::span<Batch<4>> batches) {
 
 }  // namespace
 
-ContactSoftness ContactSoftness::make(float h, float hertz, float dampingRatio, float maxPushout) {
+ContactSoftness ContactSoftness::make(float h, float hertz, float dampingRatio) {
   const float omega = 2.0f * kPi * std::min(hertz, 0.25f / h), zeta = dampingRatio;
   const float a1 = 2.0f * zeta + h * omega, a2 = h * omega * a1, a3 = 1.0f / (1.0f + a2);
   ContactSoftness s;
@@ -531,7 +537,6 @@ ContactSoftness ContactSoftness::make(float h, float hertz, float dampingRatio, 
   s.biasRate = omega / a1;
   s.massScale = a2 * a3;
   s.impulseScale = a3;
-  s.maxPushout = maxPushout;
   s.invMassScale = 1.0f / s.massScale;
   s.carry = (1.0f - s.impulseScale) * s.invMassScale;
   return s;

@@ -45,6 +45,7 @@ struct ContactConstraint {
   float invMassA, invIA, invMassB, invIB;
   Vec2 normal;
   float friction, restitution;
+  float maxPushout;  // the fastest it pushes overlapping points apart (m/s)
   int pointCount;
   ConstraintPoint points[2];
 };
@@ -78,10 +79,10 @@ static_assert(sizeof(SolverBody) == 32 && std::is_standard_layout_v<SolverBody>)
 // The soft contact (Catto, "Solver2D", 2024): a spring-damper of stiffness omega and damping
 // ratio zeta, written as a bias and a mass / impulse scale for an implicit step of size h.
 struct ContactSoftness {
-  float invH = 0, biasRate = 0, massScale = 1, impulseScale = 0, maxPushout = 0;
+  float invH = 0, biasRate = 0, massScale = 1, impulseScale = 0;
   // For the two-point block solve: 1 / s_m and (1 - s_i) / s_m.
   float invMassScale = 1, carry = 0;
-  static ContactSoftness make(float h, float hertz, float dampingRatio, float maxPushout);
+  static ContactSoftness make(float h, float hertz, float dampingRatio);
 };
 
 class ContactSolver {

@@ -1,5 +1,6 @@
 // Islands and sleep: still islands of touching bodies stop being simulated until woken.
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <vector>
 
@@ -35,13 +36,31 @@ void WorldState::updateSleep(float dt) {
   const auto n = static_cast<std::size_t>(awakeCount_);
   const float lin2 = def_.linearSleepTolerance * def_.linearSleepTolerance;
   const float ang2 = def_.angularSleepTolerance * def_.angularSleepTolerance;
-  // Each awake body's still time; bodies that may not sleep count as never still.
+  // Each awake body's still time; bodies that may not sleep count as never still. Still is
+  // slower than the tolerances, and moved on average no faster than the linear one since it
+  // became still: the push-out moves overlapping bodies by their positions while the relax
+  // pass takes its speed back out, so a body being pushed out of an overlap can end every step
+  // at rest. (A load resting on a soft contact deeper than the slop, which is where it
+  // settles, does not drift, and sleeps; the average lets a settled stack's jitter, which
+  // cancels, through.)
   for (std::size_t s = 0; s < n; ++s) {
     Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
     const float v2 = v_[3 * s] * v_[3 * s] + v_[3 * s + 1] * v_[3 * s + 1];
     const float w2 = v_[3 * s + 2] * v_[3 * s + 2];
-    const bool still = def_.enableSleep && b.allowSleep && v2 <= lin2 && w2 <= ang2;
-    b.sleepTime = still ? b.sleepTime + dt : 0.0f;
+    const bool slow = def_.enableSleep && b.allowSleep && v2 <= lin2 && w2 <= ang2;
+    if (!slow) {
+      b.sleepTime = 0.0f;
+      continue;
+    }
+    const std::array<double, 2> at{q_[3 * s], q_[3 * s + 1]};
+    if (b.sleepTime == 0.0f) b.stillFrom = at;
+    b.sleepTime += dt;
+    const double dx = at[0] - b.stillFrom[0], dy = at[1] - b.stillFrom[1];
+    const double reach = static_cast<double>(def_.linearSleepTolerance) * b.sleepTime;
+    if (dx * dx + dy * dy > reach * reach) {
+      b.sleepTime = dt;
+      b.stillFrom = at;
+    }
   }
   if (!def_.enableSleep || n == 0) return;
   // Islands: awake dynamic bodies joined by touching contacts (union-find over slots).

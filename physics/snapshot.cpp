@@ -232,7 +232,7 @@ void ioState(A& a, W& s) {
   a(s.bodyCount_);
   a(s.shapeCount_);
   a(s.awakeCount_);
-  list(a, s.bodies_, 78, [&](auto& b) {  // (the least bytes of each item)
+  list(a, s.bodies_, 94, [&](auto& b) {  // (the least bytes of each item)
     a(b.type, 3);
     for (auto* flag : {&b.alive, &b.fixedRotation, &b.bullet, &b.allowSleep, &b.enabled})
       a(*flag);
@@ -244,6 +244,8 @@ void ioState(A& a, W& s) {
     a(b.force);
     for (auto* f : {&b.torque, &b.linearDamping, &b.angularDamping, &b.gravityScale, &b.sleepTime})
       a(*f);
+    a(b.stillFrom[0]);
+    a(b.stillFrom[1]);
     a(b.island);
     a(b.userData);
     a(b.slot);
@@ -383,7 +385,8 @@ void decode(ByteReader& r, WorldState& s) {
     need(isFinite(b.xf.p) && std::isfinite(b.angle) && isFinite(b.force) &&
              std::isfinite(b.torque) && std::isfinite(b.linearDamping) &&
              std::isfinite(b.angularDamping) && std::isfinite(b.gravityScale) &&
-             std::isfinite(b.sleepTime) && std::fabs(c * c + sn * sn - 1.0f) < 1e-4f,
+             std::isfinite(b.sleepTime) && std::isfinite(b.stillFrom[0]) &&
+             std::isfinite(b.stillFrom[1]) && std::fabs(c * c + sn * sn - 1.0f) < 1e-4f,
          "a body's state is not finite");
   }
   for (const WorldState::ShapeRecord& rec : s.shapes_) {

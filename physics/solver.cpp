@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <numeric>
 
+#include "physics/constants.h"
 #include "physics/world.h"
 #include "physics/world_state.h"
 
@@ -63,7 +65,7 @@ void WorldState::solve(float dt) {
   prepareBodies(dt);
   const float h = dt / static_cast<float>(def_.substeps);
   const ContactSoftness soft =
-      ContactSoftness::make(h, def_.contactHertz, def_.contactDampingRatio, def_.maxPushoutSpeed);
+      ContactSoftness::make(h, def_.contactHertz, def_.contactDampingRatio);
   for (int sub = 0; sub < def_.substeps; ++sub) {
     integrateFreeMotion(sub, h);
     warmStart();
@@ -73,6 +75,7 @@ void WorldState::solve(float dt) {
     contactSolver_.solve(solverBodies_, soft, true, backward);
     integratePositions(h);
     contactSolver_.solve(solverBodies_, soft, false, !backward);  // relax
+    if (!tracked_.empty()) measureContactWork();
     storeVelocities();
   }
   storeImpulses();
@@ -87,8 +90,11 @@ void WorldState::prepareContacts() {
   constraintBodies_.clear();
   bouncy_.clear();
   bouncyIndex_.clear();
+  tracked_.clear();
   profile_.colours = profile_.overflow = 0;
   if (awakeCount_ == 0) return;
+  // anyDeep: a contact overlapping past the slop; shared: a body with two of them.
+  bool anyDeep = false, shared = false;
   for (std::size_t ci = 0; ci < contacts_.size(); ++ci) {
     const Contact& c = contacts_[ci];
     if (!c.touching) continue;
@@ -98,9 +104,23 @@ void WorldState::prepareContacts() {
     const Body& b = bodies_[static_cast<std::size_t>(bodyB)];
     const std::int32_t slotA = awake(a) ? a.slot : -1, slotB = awake(b) ? b.slot : -1;
     if (slotA < 0 && slotB < 0) continue;  // asleep against asleep or static
+    const bool movesA = a.invMass > 0.0f || a.invInertia > 0.0f;
+    const bool movesB = b.invMass > 0.0f || b.invInertia > 0.0f;
     constraintSources_.push_back({static_cast<std::int32_t>(ci), bodyA, bodyB});
-    constraintBodies_.push_back({slotA, slotB, a.invMass > 0.0f || a.invInertia > 0.0f,
-                                 b.invMass > 0.0f || b.invInertia > 0.0f, c.manifold.pointCount});
+    constraintBodies_.push_back({slotA, slotB, movesA, movesB, c.manifold.pointCount});
+    // The push-out speed is a body's, not each contact's: a body overlapping k others past the
+    // slop is pushed out of each at 1/k of it, so that together they push it no faster than the
+    // push-out speed (what the relax pass cannot take back of a push stays in the body as
+    // speed). The counts start at the first such contact.
+    const float deepest = c.manifold.pointCount == 2 ? std::min(c.manifold.points[0].separation,
+                                                                c.manifold.points[1].separation)
+                                                     : c.manifold.points[0].separation;
+    if (deepest < -kLinearSlop) {
+      if (!anyDeep) slotOverlaps_.assign(static_cast<std::size_t>(awakeCount_), 0);
+      anyDeep = true;
+      for (const std::int32_t slot : {movesA ? slotA : -1, movesB ? slotB : -1})
+        if (slot >= 0) shared = ++slotOverlaps_[static_cast<std::size_t>(slot)] > 1 || shared;
+    }
   }
   contactSolver_.prepare(constraintBodies_, awakeCount_, def_.maxSolverLanes);
   profile_.colours = contactSolver_.colourCount();
@@ -125,6 +145,14 @@ void WorldState::prepareContacts() {
     cc.normal = c.manifold.normal;
     cc.friction = c.friction;
     cc.restitution = c.restitution;
+    // Its share of the push-out speed (see above).
+    cc.maxPushout = def_.maxPushoutSpeed;
+    if (shared) {
+      const std::int32_t kA = cc.slotA >= 0 ? slotOverlaps_[static_cast<std::size_t>(cc.slotA)] : 0;
+      const std::int32_t kB = cc.slotB >= 0 ? slotOverlaps_[static_cast<std::size_t>(cc.slotB)] : 0;
+      const std::int32_t shares = std::max(kA, kB);
+      if (shares > 1) cc.maxPushout /= static_cast<float>(shares);
+    }
     cc.pointCount = c.manifold.pointCount;
     const Vec2 offsetA = rotate(a.xf.q, a.localCenter), offsetB = rotate(b.xf.q, b.localCenter);
     const Vec2 vA = cc.slotA >= 0 ? Vec2{v_[3 * static_cast<std::size_t>(cc.slotA)],
@@ -154,6 +182,121 @@ void WorldState::prepareContacts() {
     }
   }
   contactSolver_.computeMasses();
+  if (!bouncy_.empty()) prepareBounceGroups();
+}
+
+// The groups restitution's energy budget is kept by: awake bodies joined by constraints
+// between two of them that contacts move (union-find over slots), those with a bouncy
+// constraint tracked. A lone constraint with one point (its bodies touch nothing else) is not:
+// Newton's law gives its pair e^2 of its approach's energy, no more. A kinematic body does
+// work on what it touches that no contact measures, so a group touching one is marked driven
+// (see limitBounceEnergy).
+void WorldState::prepareBounceGroups() {
+  bounceGroups_.clear();
+  // A side the contacts move (a dynamic body awake), else -1.
+  auto movingA = [](const ConstraintBodies& cb) { return cb.movesA ? cb.slotA : -1; };
+  auto movingB = [](const ConstraintBodies& cb) { return cb.movesB ? cb.slotB : -1; };
+  // How many constraints each slot has, 2 standing for more.
+  slotDegree_.assign(static_cast<std::size_t>(awakeCount_), 0);
+  for (const ConstraintBodies& cb : constraintBodies_) {
+    for (const std::int32_t slot : {movingA(cb), movingB(cb)}) {
+      if (slot < 0) continue;
+      std::uint8_t& count = slotDegree_[static_cast<std::size_t>(slot)];
+      count = count < 2 ? static_cast<std::uint8_t>(count + 1) : count;
+    }
+  }
+  // Per constraint: -2 if lone (or moving nothing), else -1, then its root slot, then its
+  // group.
+  constraintGroup_.resize(constraintBodies_.size());
+  for (std::size_t i = 0; i < constraintBodies_.size(); ++i) {
+    const ConstraintBodies& cb = constraintBodies_[i];
+    auto single = [&](std::int32_t slot) {
+      return slot < 0 || slotDegree_[static_cast<std::size_t>(slot)] == 1;
+    };
+    const bool moves = movingA(cb) >= 0 || movingB(cb) >= 0;
+    const bool lone = cb.pointCount == 1 && single(movingA(cb)) && single(movingB(cb));
+    constraintGroup_[i] = moves && !lone ? -1 : -2;
+  }
+  bool any = false;
+  for (const std::int32_t i : bouncyIndex_)
+    any = any || constraintGroup_[static_cast<std::size_t>(i)] == -1;
+  if (!any) return;
+  // Union-find over the slots of the constraints that are not lone (only those are read).
+  slotParent_.resize(static_cast<std::size_t>(awakeCount_));
+  for (std::size_t i = 0; i < constraintBodies_.size(); ++i) {
+    if (constraintGroup_[i] == -2) continue;
+    for (const std::int32_t slot : {movingA(constraintBodies_[i]), movingB(constraintBodies_[i])})
+      if (slot >= 0) slotParent_[static_cast<std::size_t>(slot)] = slot;
+  }
+  auto root = [&](std::int32_t x) {
+    while (slotParent_[static_cast<std::size_t>(x)] != x) {
+      slotParent_[static_cast<std::size_t>(x)] =
+          slotParent_[static_cast<std::size_t>(slotParent_[static_cast<std::size_t>(x)])];
+      x = slotParent_[static_cast<std::size_t>(x)];
+    }
+    return x;
+  };
+  for (std::size_t i = 0; i < constraintBodies_.size(); ++i) {
+    const ConstraintBodies& cb = constraintBodies_[i];
+    if (constraintGroup_[i] == -1 && movingA(cb) >= 0 && movingB(cb) >= 0)
+      slotParent_[static_cast<std::size_t>(root(cb.slotA))] = root(cb.slotB);
+  }
+  rootGroup_.resize(static_cast<std::size_t>(awakeCount_));
+  for (std::size_t i = 0; i < constraintBodies_.size(); ++i) {
+    if (constraintGroup_[i] == -2) continue;
+    const ConstraintBodies& cb = constraintBodies_[i];
+    const std::int32_t r = root(movingA(cb) >= 0 ? movingA(cb) : movingB(cb));
+    constraintGroup_[i] = r;
+    rootGroup_[static_cast<std::size_t>(r)] = -1;
+  }
+  for (std::size_t j = 0; j < bouncy_.size(); ++j) {
+    const std::int32_t r = constraintGroup_[static_cast<std::size_t>(bouncyIndex_[j])];
+    if (r < 0) continue;
+    std::int32_t& group = rootGroup_[static_cast<std::size_t>(r)];
+    if (group < 0) {
+      group = static_cast<std::int32_t>(bounceGroups_.size());
+      bounceGroups_.emplace_back();
+    }
+    BounceGroup& g = bounceGroups_[static_cast<std::size_t>(group)];
+    g.restitution = std::max(g.restitution, bouncy_[j].restitution);
+  }
+  // Each constraint's group (-1: none), which groups are driven, the tracked bodies (each
+  // once: marked in slotParent_, done with as a union-find).
+  for (std::size_t i = 0; i < constraintBodies_.size(); ++i) {
+    const std::int32_t r = constraintGroup_[i];
+    const std::int32_t group = r >= 0 ? rootGroup_[static_cast<std::size_t>(r)] : -1;
+    constraintGroup_[i] = group;
+    if (group < 0) continue;
+    const ConstraintBodies& cb = constraintBodies_[i];
+    BounceGroup& g = bounceGroups_[static_cast<std::size_t>(group)];
+    g.driven = g.driven || (cb.slotA >= 0 && !cb.movesA) || (cb.slotB >= 0 && !cb.movesB);
+  }
+  for (std::size_t i = 0; i < constraintBodies_.size(); ++i) {
+    const std::int32_t group = constraintGroup_[i];
+    if (group < 0) continue;
+    for (const std::int32_t slot : {movingA(constraintBodies_[i]), movingB(constraintBodies_[i])}) {
+      if (slot < 0 || slotParent_[static_cast<std::size_t>(slot)] < 0) continue;
+      slotParent_[static_cast<std::size_t>(slot)] = -1;
+      const Body& b = bodies_[static_cast<std::size_t>(slotBody_[static_cast<std::size_t>(slot)])];
+      tracked_.push_back({slot, group, b.mass, b.invInertia > 0.0f ? b.inertia : 0.0f});
+    }
+  }
+}
+
+// What the contacts did to each tracked body's kinetic energy this substep: from the free
+// motion's velocity to the velocity after the relax pass (the warm start, both passes and
+// their impulses, nothing else, come between).
+void WorldState::measureContactWork() {
+  for (const TrackedBody& t : tracked_) {
+    const auto s = static_cast<std::size_t>(t.slot);
+    const SolverBody& b = solverBodies_[s];
+    const float vx = freeV_[3 * s], vy = freeV_[3 * s + 1], w = freeV_[3 * s + 2];
+    // (v1 - v0) . (v1 + v0): the difference of squares without cancelling.
+    const float linear = (b.v.x - vx) * (b.v.x + vx) + (b.v.y - vy) * (b.v.y + vy);
+    const float angular = (b.w - w) * (b.w + w);
+    bounceGroups_[static_cast<std::size_t>(t.group)].work +=
+        0.5 * static_cast<double>(t.mass) * linear + 0.5 * static_cast<double>(t.inertia) * angular;
+  }
 }
 
 // Per awake slot: where it starts (the solver measures motion from there), whether it is round,
@@ -343,7 +486,10 @@ void WorldState::storeImpulses() {
 }
 
 // Restitution, once after the substeps, for the constraints that have it (in the constraints'
-// order); their normal impulses stored again with it.
+// order), within each group's energy budget. Its impulses are not stored for the next step's
+// warm start: that starts each substep with the impulse of a substep, and a bounce's, given
+// once for the whole step, kicks the pair apart again in the next one, a kick the solve must
+// take back, and through a row of touching bodies passes on before it can.
 void WorldState::applyRestitution() {
   if (bouncy_.empty()) return;
   for (std::size_t j = 0; j < bouncy_.size(); ++j) {
@@ -351,6 +497,9 @@ void WorldState::applyRestitution() {
     for (int k = 0; k < cc.pointCount; ++k)
       cc.points[k] = contactSolver_.point(static_cast<std::size_t>(bouncyIndex_[j]), k);
   }
+  beforeBounce_.resize(3 * tracked_.size());
+  for (std::size_t i = 0; i < tracked_.size(); ++i)
+    std::copy_n(&v_[3 * static_cast<std::size_t>(tracked_[i].slot)], 3, &beforeBounce_[3 * i]);
   const float threshold = def_.restitutionThreshold;
   forEachBouncy([&](ContactConstraint& cc, Vec2& vA, float& wA, Vec2& vB, float& wB) {
     if (cc.restitution == 0.0f) return;
@@ -373,10 +522,53 @@ void WorldState::applyRestitution() {
       applyImpulse(cc, p, P, vA, wA, vB, wB);
     }
   });
-  for (const ContactConstraint& cc : bouncy_) {
-    Contact& c = contacts_[static_cast<std::size_t>(cc.contact)];
-    for (int k = 0; k < cc.pointCount; ++k)
-      c.normalImpulse[k] = cc.points[k].normalImpulse;
+  limitBounceEnergy();
+}
+
+// Newton's law (each point's normal velocity reversed, times the restitution) keeps a lone
+// pair to its energy, but not bodies that touch several others at once: the approach a point
+// reverses is the one it had when the step began, and what the solve passed on meanwhile
+// through the neighbouring contacts is not in it. So each group gives back at most e^2 of the
+// kinetic energy its contacts took out of it over the substeps (Stronge's energetic
+// restitution, e the group's highest restitution): where the bounce would give more, its
+// velocity changes are scaled down by one factor for the whole group, which keeps momentum. A
+// lone pair's bounce is within the budget: its contact took out the whole approach. A group
+// driven by a kinematic body is left as Newton's law made it: that body's work is not measured.
+void WorldState::limitBounceEnergy() {
+  for (BounceGroup& g : bounceGroups_)
+    g.bounceSquare = g.bounceCross = 0.0;
+  for (std::size_t i = 0; i < tracked_.size(); ++i) {
+    const TrackedBody& t = tracked_[i];
+    const float* before = &beforeBounce_[3 * i];
+    const float* after = &v_[3 * static_cast<std::size_t>(t.slot)];
+    const double weight[3] = {t.mass, t.mass, t.inertia};
+    BounceGroup& g = bounceGroups_[static_cast<std::size_t>(t.group)];
+    for (int k = 0; k < 3; ++k) {
+      const double change = static_cast<double>(after[k]) - before[k];
+      g.bounceSquare += 0.5 * weight[k] * change * change;
+      g.bounceCross += weight[k] * before[k] * change;
+    }
+  }
+  // The group's kinetic energy with a fraction f of the bounce applied is E + f c + f^2 a
+  // (a: bounceSquare, c: bounceCross); the largest f in [0, 1] with f c + f^2 a <= budget.
+  for (BounceGroup& g : bounceGroups_) {
+    const double a = g.bounceSquare, c = g.bounceCross;
+    const double budget =
+        static_cast<double>(g.restitution) * g.restitution * std::max(-g.work, 0.0);
+    g.kept = 1.0;
+    if (g.driven || a + c <= budget) continue;
+    const double root = std::sqrt(c * c + 4.0 * a * budget);
+    // The positive root of a f^2 + c f - budget, in the form that does not cancel.
+    g.kept = c > 0.0 ? 2.0 * budget / (c + root) : (root - c) / (2.0 * a);
+  }
+  for (std::size_t i = 0; i < tracked_.size(); ++i) {
+    const TrackedBody& t = tracked_[i];
+    const double kept = bounceGroups_[static_cast<std::size_t>(t.group)].kept;
+    if (kept >= 1.0) continue;
+    const float* before = &beforeBounce_[3 * i];
+    float* after = &v_[3 * static_cast<std::size_t>(t.slot)];
+    for (int k = 0; k < 3; ++k)
+      after[k] = static_cast<float>(before[k] + kept * (static_cast<double>(after[k]) - before[k]));
   }
 }
 

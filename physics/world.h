@@ -372,7 +372,7 @@ class World {
   struct ContactPointView {
     Vec2 point, normal;  // normal from shape A to shape B
     float separation;
-    float normalImpulse;  // of the last step
+    float normalImpulse;  // of the last step's last substep (a bounce's not included)
   };
   std::vector<ContactPointView> contactPoints() const;  // of touching contacts
   const Quadtree& broadphase() const;

@@ -73,8 +73,9 @@ class WorldState {
     float minExtent = 0, maxExtent = 0;  // for continuous collision (see continuous())
     bool allowSleep = true;
     bool enabled = true;
-    float sleepTime = 0;       // how long it has been slower than the sleep tolerances
-    std::int32_t island = -1;  // its sleeping island, -1 while awake
+    float sleepTime = 0;                // how long it has been still (see updateSleep)
+    std::array<double, 2> stillFrom{};  // its centre of mass when it became still
+    std::int32_t island = -1;           // its sleeping island, -1 while awake
     std::uint64_t userData = 0;
     std::int32_t slot = -1;  // in q_ and v_; -1 for static bodies
     // Every shape a circle about the centre of mass: turning moves none of its contact
@@ -217,6 +218,9 @@ class WorldState {
   void applyRestitution();
   template <class Solve>
   void forEachBouncy(Solve&& solve);
+  void prepareBounceGroups();
+  void measureContactWork();
+  void limitBounceEnergy();
   void accelerations(std::span<const double> q, std::span<const float> v, double t,
                      std::span<float> a);
 
@@ -300,8 +304,32 @@ class WorldState {
   };
   std::vector<ConstraintSource> constraintSources_;
   std::vector<ConstraintBodies> constraintBodies_;
+  // Per awake slot: how many constraints overlapping past the slop when the step began move it
+  // (see prepareContacts: each pushes it out at its share of the push-out speed).
+  std::vector<std::int32_t> slotOverlaps_;
   std::vector<ContactConstraint> bouncy_;
   std::vector<std::int32_t> bouncyIndex_;
+  // Restitution's energy budget (limitBounceEnergy): the bodies joined to a bouncy constraint
+  // by touching contacts, in groups; per group what the contacts did to its kinetic energy
+  // over the substeps (J), the terms of its energy as a function of how much of the bounce is
+  // applied, the fraction kept, its highest restitution, and whether a kinematic body drives
+  // it. Per tracked body its slot, group, mass and rotational inertia; its velocity before
+  // restitution (3 each). Per constraint its group (-1: none, -2: left out).
+  struct BounceGroup {
+    double work = 0, bounceSquare = 0, bounceCross = 0, kept = 1;
+    float restitution = 0;
+    bool driven = false;
+  };
+  struct TrackedBody {
+    std::int32_t slot, group;
+    float mass, inertia;
+  };
+  std::vector<BounceGroup> bounceGroups_;
+  std::vector<TrackedBody> tracked_;
+  std::vector<float> beforeBounce_;
+  std::vector<std::int32_t> constraintGroup_;
+  std::vector<std::int32_t> slotParent_, rootGroup_;  // per awake slot, while grouping
+  std::vector<std::uint8_t> slotDegree_;
   ContactSolver contactSolver_;
   // Per slot during the solve: the free-motion velocities of the substep, and the solver's
   // bodies (velocity, and how far each has moved and turned since the constraints were

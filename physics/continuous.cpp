@@ -119,6 +119,13 @@ void WorldState::continuous() {
         const Body& ob = bodies_[static_cast<std::size_t>(r.body)];
         const bool moving = ob.type != BodyType::staticBody;
         if (moving && !b.bullet) return true;
+        if (r.shape.type == ShapeType::chainSegment && r.shape.chainSegment.oneSided) {
+          // A one-sided link lets out what starts behind it (the manifold's rule: the shape's
+          // centre on the link's left); swept against it, such a body would stop at the link.
+          const Vec2 p1 = apply(ob.xf, r.shape.chainSegment.segment.point1);
+          const Vec2 p2 = apply(ob.xf, r.shape.chainSegment.segment.point2);
+          if (dot(apply(xf1, mine.bound.center) - p1, rightPerp(p2 - p1)) < 0.0f) return true;
+        }
         const Sweep otherSweep = shapeSweep(ob, sweepOf(ob));
         const ShapeProxy otherProxy = makeProxy(r.shape);
         const ToiOutput toi = timeOfImpact(proxy, sweep, otherProxy, otherSweep, first);

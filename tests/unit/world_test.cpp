@@ -1350,3 +1350,37 @@ TEST(World, BadDefinitionsAreRejectedWithTheField) {
 }
 
 }  // namespace
+
+namespace {
+
+// A one-sided chain link (a merged tile wall) stops what comes at it from its right and lets
+// out what comes from its left, however fast: continuous collision follows the manifold's rule.
+// (Before, a ball at 10 m/s from the back was stopped at the link and stayed there, its velocity
+// still 10 m/s into it.)
+TEST(Continuous, OneSidedLinksLetOutWhatStartsBehindThem) {
+  for (float speed : {2.0f, 10.0f, 60.0f}) {
+    for (float side : {1.0f, -1.0f}) {  // from above: the link's back; from below: its front
+      rc::WorldDef def;
+      def.gravity = {0, 0};
+      rc::World w(def);
+      const BodyId wall = w.createBody({});
+      const std::vector<Vec2> points = {{-5, 0}, {5, 0}};  // its right side is below
+      for (const rc::ChainSegment& link : rc::makeChain(points, false, true))
+        w.createShape(wall, link);
+      rc::BodyDef ball = dynamicAt({0, side});
+      ball.linearVelocity = {0, -side * speed};
+      const BodyId b = w.createBody(ball);
+      w.createShape(b, rc::makeCircle({}, 0.2f));
+      for (int i = 0; i < 120; ++i)
+        w.step(1.0f / 60.0f);
+      if (side > 0) {
+        EXPECT_LT(w.position(b).y, -1.0f) << speed << " m/s from behind";
+        EXPECT_NEAR(w.linearVelocity(b).y, -speed, 1e-3f) << speed << " m/s from behind";
+      } else {
+        EXPECT_LE(w.position(b).y, 0.0f) << speed << " m/s from the front";
+      }
+    }
+  }
+}
+
+}  // namespace

@@ -3,7 +3,11 @@
 // body is after n steps of the world's integrator.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
+#include <vector>
+
+#include <gtest/gtest.h>
 
 #include "physics/world.h"
 
@@ -53,6 +57,56 @@ inline double eulerFall(double g, float dt, int substeps, int steps) {
   const double h = static_cast<double>(dt) / substeps;
   const double k = static_cast<double>(steps) * substeps;
   return g * h * h * k * (k + 1.0) / 2.0;
+}
+
+// Ground and `count` 1 m boxes resting on it, `spacing` apart from x = 0 (each its own island),
+// stepped for 1 s: long enough for all of them to fall asleep.
+inline std::vector<BodyId> restingRow(rc::World& w, int count, float spacing) {
+  ground(w);
+  std::vector<BodyId> row;
+  for (int i = 0; i < count; ++i) {
+    BodyId b = w.createBody(dynamicAt({spacing * static_cast<float>(i), 0.5f}));
+    w.createShape(b, rc::makeBox(0.5f, 0.5f));
+    row.push_back(b);
+  }
+  for (int i = 0; i < 60; ++i)
+    w.step(1.0f / 60.0f);
+  return row;
+}
+
+// Every body's position, angle and velocities are finite (the "no NaN in any test":
+// the checks below compare with std::max and friends, which would pass a NaN by).
+inline ::testing::AssertionResult finiteState(const rc::World& w) {
+  for (BodyId b : w.bodies()) {
+    const Vec2 p = w.position(b), v = w.linearVelocity(b);
+    if (!(rc::isFinite(p) && rc::isFinite(v) && std::isfinite(w.angle(b)) &&
+          std::isfinite(w.angularVelocity(b))))
+      return ::testing::AssertionFailure()
+             << "body " << b.index << " at (" << p.x << ", " << p.y << ") angle " << w.angle(b)
+             << " velocity (" << v.x << ", " << v.y << ") " << w.angularVelocity(b);
+  }
+  return ::testing::AssertionSuccess();
+}
+
+// Steps `w` at 60 Hz `steps` times, watching its total energy: the start, the highest seen (the
+// start included), and the first step whose state was not finite (-1: none; it stops there).
+struct EnergyRun {
+  double start = 0, highest = 0;
+  int nonFiniteStep = -1;
+};
+
+inline EnergyRun stepWatchingEnergy(rc::World& w, int steps) {
+  EnergyRun run;
+  run.start = run.highest = w.energy();
+  for (int i = 0; i < steps; ++i) {
+    w.step(1.0f / 60.0f);
+    if (!finiteState(w)) {
+      run.nonFiniteStep = i;
+      break;
+    }
+    run.highest = std::max(run.highest, w.energy());
+  }
+  return run;
 }
 
 }  // namespace rc::testing

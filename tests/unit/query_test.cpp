@@ -30,6 +30,8 @@ using rc::BodyId;
 using rc::BodyType;
 using rc::ShapeId;
 using rc::Vec2;
+using rc::testing::dynamicAt;
+using rc::testing::ground;
 using rc::testing::Kind;
 
 constexpr int kQueries = 1000;
@@ -556,6 +558,53 @@ TEST(Query, TiesGoToTheLowerShapeId) {
     ASSERT_TRUE(circle.has_value());
     EXPECT_EQ(circle->shape, sa) << (swapped ? "proxies swapped" : "proxies in order");
   }
+}
+
+TEST(World, QueriesFindWhatTheyShould) {
+  rc::World w;
+  BodyId g = ground(w);  // top face at y = 0
+  BodyId low = w.createBody(dynamicAt({0, 1}));
+  rc::ShapeId lowShape = w.createShape(low, rc::makeBox(0.5f, 0.5f));
+  BodyId high = w.createBody(dynamicAt({0, 4}));
+  rc::ShapeDef ghost;
+  ghost.filter = {4, 0xFFFFFFFFu};
+  rc::ShapeId highShape = w.createShape(high, rc::makeCircle({}, 0.5f), ghost);
+  // Straight down from 10 m: the circle's top at 4.5 m first, then the box's top at 1.5 m.
+  auto hit = w.castRay({0, 10}, {0, -20});
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_EQ(hit->shape, highShape);
+  EXPECT_EQ(hit->body, high);
+  EXPECT_NEAR(hit->point.y, 4.5f, 1e-5f);
+  EXPECT_NEAR(hit->fraction, 5.5f / 20.0f, 1e-6f);
+  EXPECT_NEAR(hit->normal.y, 1.0f, 1e-6f);
+  // Filtered: the circle's category is not in the mask.
+  hit = w.castRay({0, 10}, {0, -20}, rc::ProxyFilter{1, 1});
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_EQ(hit->shape, lowShape);
+  EXPECT_NEAR(hit->point.y, 1.5f, 1e-5f);
+  auto all = w.castRayAll({0, 10}, {0, -20});
+  ASSERT_EQ(all.size(), 3u);  // circle, box, ground
+  EXPECT_EQ(all[0].shape, highShape);
+  EXPECT_EQ(all[1].shape, lowShape);
+  EXPECT_EQ(all[2].body, g);
+  EXPECT_TRUE(all[0].fraction < all[1].fraction && all[1].fraction < all[2].fraction);
+  // A circle of radius 0.25 swept down beside the ball hits the box's top edge earlier by its
+  // radius: at y = 1.75 m for its centre.
+  auto swept = w.castCircle({0.3f, 3.0f}, 0.25f, {0, -3});
+  ASSERT_TRUE(swept.has_value());
+  EXPECT_EQ(swept->shape, lowShape);
+  EXPECT_NEAR(3.0f - 3.0f * swept->fraction, 1.75f, 0.002f);  // within the cast's tolerance
+  EXPECT_NEAR(swept->normal.y, 1.0f, 1e-4f);
+  EXPECT_FALSE(w.castRay({5, 10}, {0, 5}).has_value());  // going up, nothing there
+  // Point and box overlaps.
+  const std::vector<rc::ShapeRef> inBox = w.overlapPoint({0.2f, 1.2f});
+  ASSERT_EQ(inBox.size(), 1u);
+  EXPECT_EQ(inBox[0].shape, lowShape);
+  EXPECT_EQ(inBox[0].body, low);
+  EXPECT_EQ(w.overlapPoint({0.45f, 4.45f}).size(), 0u);  // in the ball's box, not in the ball
+  EXPECT_EQ(w.overlapAABB({{-0.1f, 0.9f}, {0.1f, 4.1f}}).size(), 2u);
+  EXPECT_THROW(w.castRay({0, std::numeric_limits<float>::quiet_NaN()}, {0, 1}),
+               rc::InvalidDefinition);
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
-// The contact solver (physics/solver.cpp, physics/contact_solver.cpp) in scenes where several
-// contacts act at once, against closed forms: rows of touching balls struck by others keep
-// their momentum and never gain energy; a lone pair bounces as Newton's law says.
+// The solve (physics/solver.cpp, physics/contact_solver.cpp) against closed forms: a box at rest
+// on the ground (Box2D's HelloWorld), bounce heights e^2, momentum and energy in collisions, a
+// friction ramp, free bodies following their integrator exactly, stacks and pyramids that stand,
+// energy that never rises; rows of touching balls struck by others keep their momentum and never
+// gain energy; a lone pair bounces as Newton's law says; overlaps recovered at the push-out speed.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,11 +13,16 @@
 
 #include "physics/random.h"
 #include "physics/world.h"
+#include "support/world_scenes.h"
 
 namespace {
 
 using rc::BodyId;
 using rc::Vec2;
+using rc::testing::dynamicAt;
+using rc::testing::finiteState;
+using rc::testing::ground;
+using rc::testing::stepWatchingEnergy;
 
 // Kinetic energy (linear and rotational) and linear momentum of some bodies, in double.
 struct Motion {
@@ -246,6 +253,455 @@ TEST(Restitution, StruckClustersNeverGainEnergy) {
   }
   std::printf("200 clusters: energy at most %.7f of the input, on average %.3f of it at the end\n",
               highest, endSum / 200.0);
+}
+
+// A ball spinning at 100 rad/s on a frictionless floor stays where it rests: a circle about
+// its centre of mass has the same contact geometry at every angle. (Rotating its contact
+// anchor with the body, as is right for a box's corners, tilts the solver's separation
+// estimate by r (1 - cos turned), 4 cm per substep at this spin, and made the ball hop.)
+TEST(World, SpinningBallRestsStill) {
+  rc::World w;
+  ground(w, 0.0f);
+  rc::BodyDef def = dynamicAt({0, 0.5f});
+  def.angularVelocity = 100.0f;
+  BodyId ball = w.createBody(def);
+  rc::ShapeDef sd;
+  sd.friction = 0.0f;
+  w.createShape(ball, rc::makeCircle({}, 0.5f), sd);
+  float lo = 1e9f, hi = -1e9f;
+  for (int i = 0; i < 120; ++i) {
+    w.step(1.0f / 60.0f);
+    lo = std::min(lo, w.position(ball).y);
+    hi = std::max(hi, w.position(ball).y);
+  }
+  std::printf("ball centre between y = %.5f and %.5f, spin %.3f rad/s\n", lo, hi,
+              w.angularVelocity(ball));
+  // Resting contact settles within Box2D's linear slop (0.005 m) of touching.
+  EXPECT_GT(lo, 0.5f - rc::kLinearSlop);
+  EXPECT_LT(hi, 0.5f + 1e-4f);
+  EXPECT_FLOAT_EQ(w.angularVelocity(ball), 100.0f);
+}
+
+// Box2D's HelloWorld: a 2 m box dropped from 4 m onto the ground comes to rest on it.
+TEST(World, HelloWorldBoxComesToRest) {
+  rc::World w;
+  ground(w);
+  BodyId box = w.createBody(dynamicAt({0, 4}));
+  rc::ShapeDef sd;
+  sd.friction = 0.3f;
+  w.createShape(box, rc::makeBox(1, 1), sd);
+  for (int i = 0; i < 90; ++i)
+    w.step(1.0f / 60.0f);
+  std::printf("box at y = %.5f, angle %.6f after 1.5 s\n", w.position(box).y, w.angle(box));
+  EXPECT_NEAR(w.position(box).y, 1.0f, 0.01f);
+  EXPECT_LT(std::abs(w.angle(box)), 0.01f);
+  EXPECT_LT(rc::length(w.linearVelocity(box)), 0.01f);
+}
+
+// A ball dropped from 10 m (its bottom 10 m above the ground) on a frictionless floor: the first
+// bounce reaches e^2 of the drop height (energy after the bounce is e^2 of the energy before),
+// never more, within 2% at every integrator. Verlet and RK4 fly exactly under gravity, so what
+// is left is the contact: 0.24% low, the approach taken at the start of the substep that reaches
+// the floor (the lower bound of their speed over it). Semi-implicit Euler moves a substep at
+// its end speed, which is the impact speed restitution reverses, so its bounce is the discrete
+// flight's alone: g h / v of the height lost on the way up and about nothing on the way down,
+// 1.7% at e = 0.2 with 4 substeps (0.98290 by stepping the integrator by hand), 0.7% at 8.
+TEST(World, BounceHeightIsRestitutionSquared) {
+  struct Config {
+    rc::Integrator integrator;
+    int substeps;
+  };
+  const Config configs[] = {{rc::Integrator::velocityVerlet, 4},
+                            {rc::Integrator::rk4, 4},
+                            {rc::Integrator::semiImplicitEuler, 8},
+                            {rc::Integrator::semiImplicitEuler, 4}};
+  for (const Config& config : configs) {
+    for (float e : {0.2f, 0.5f, 0.8f, 1.0f}) {
+      rc::WorldDef def;
+      def.integrator = config.integrator;
+      def.substeps = config.substeps;
+      rc::World w(def);
+      ground(w, 0.0f);
+      const float r = 0.5f, h = 1.0f / 60.0f;
+      BodyId ball = w.createBody(dynamicAt({0, 10 + r}));
+      rc::ShapeDef sd;
+      sd.friction = 0.0f;
+      sd.restitution = e;
+      w.createShape(ball, rc::makeCircle({}, r), sd);
+      bool bounced = false;
+      float peak = -1;
+      for (int i = 0; i < 600; ++i) {
+        const float vyBefore = w.linearVelocity(ball).y;
+        w.step(h);
+        const float vy = w.linearVelocity(ball).y;
+        if (!bounced && vyBefore < 0 && vy > 0) bounced = true;
+        if (bounced) {
+          peak = std::max(peak, w.position(ball).y - r);
+          if (vy < 0) break;  // falling again: the first bounce is over
+        }
+      }
+      const std::string what = std::string(rc::integratorName(config.integrator)) + " x" +
+                               std::to_string(config.substeps) + " e " + std::to_string(e);
+      ASSERT_TRUE(bounced) << what;
+      const float ratio = peak / 10.0f / (e * e);
+      std::printf("%s: bounce %.4f m, %.4f of e^2\n", what.c_str(), peak, ratio);
+      EXPECT_NEAR(ratio, 1.0f, 0.02f) << what;
+      EXPECT_LE(peak, 10.0f) << what;
+    }
+  }
+}
+
+struct TwoBody {
+  double px = 0, py = 0, energy = 0;
+};
+
+TwoBody momentum(const rc::World& w, BodyId a, BodyId b) {
+  TwoBody m;
+  for (BodyId id : {a, b}) {
+    const Vec2 v = w.linearVelocity(id);
+    const double mass = w.mass(id);
+    m.px += mass * v.x;
+    m.py += mass * v.y;
+    m.energy += 0.5 * mass * (static_cast<double>(v.x) * v.x + static_cast<double>(v.y) * v.y) +
+                0.5 * w.rotationalInertia(id) * w.angularVelocity(id) * w.angularVelocity(id);
+  }
+  return m;
+}
+
+// Two circles of different sizes collide head-on and off-centre, no gravity, no friction.
+TEST(World, CollisionsConserveMomentumAndElasticEnergy) {
+  for (float offset : {0.0f, 0.4f}) {
+    for (float e : {0.0f, 0.5f, 1.0f}) {
+      rc::WorldDef def;
+      def.gravity = {0, 0};
+      rc::World w(def);
+      BodyId a = w.createBody(dynamicAt({-3, 0}));
+      BodyId b = w.createBody(dynamicAt({3, offset}));
+      rc::ShapeDef sd;
+      sd.friction = 0.0f;
+      sd.restitution = e;
+      w.createShape(a, rc::makeCircle({}, 0.5f), sd);
+      w.createShape(b, rc::makeCircle({}, 0.7f), sd);
+      w.setLinearVelocity(a, {5, 0});
+      w.setLinearVelocity(b, {-4, 0});
+      const TwoBody before = momentum(w, a, b);
+      for (int i = 0; i < 120; ++i)
+        w.step(1.0f / 60.0f);
+      const TwoBody after = momentum(w, a, b);
+      // 1e-5 of the net momentum (a 5 m/s ball of 0.79 kg against a 4 m/s one of 1.54 kg:
+      // |P| = 2.23 kg m/s).
+      const double scale = std::hypot(before.px, before.py);
+      const std::string what = "offset " + std::to_string(offset) + " e " + std::to_string(e);
+      EXPECT_NEAR(after.px, before.px, 1e-5 * scale) << what;
+      EXPECT_NEAR(after.py, before.py, 1e-5 * scale) << what;
+      // They did collide: b now moves right, or at least slower to the left.
+      EXPECT_GT(w.linearVelocity(b).x, -4.0f + 1.0f) << what;
+      if (e == 1.0f) {
+        EXPECT_NEAR(after.energy / before.energy, 1.0, 1e-4) << what;
+      } else {
+        EXPECT_LT(after.energy, before.energy) << what;
+      }
+      std::printf("%s: energy ratio %.6f\n", what.c_str(), after.energy / before.energy);
+    }
+  }
+}
+
+// A box on a ramp of 0.25 rad: it holds when mu >= tan(0.25) = 0.2553 and otherwise slides
+// with acceleration g (sin - mu cos).
+TEST(World, FrictionRamp) {
+  const float angle = 0.25f, g = 10.0f;
+  for (float mu : {0.1f, 0.2f, 0.26f, 0.5f}) {
+    rc::World w;
+    rc::BodyDef rampDef;
+    rampDef.angle = angle;
+    BodyId ramp = w.createBody(rampDef);
+    rc::ShapeDef sd;
+    sd.friction = mu;
+    w.createShape(ramp, rc::makeBox(40, 1), sd);  // top face at 1 m in the ramp's frame
+    // The box resting on the top face, 10 m up the slope, its base on the surface.
+    const Vec2 along{std::cos(angle), std::sin(angle)}, up{-std::sin(angle), std::cos(angle)};
+    const Vec2 start = -10.0f * along + 1.5f * up;
+    BodyId box = w.createBody(dynamicAt(start, angle));
+    w.createShape(box, rc::makeBox(0.5f, 0.5f), sd);
+    // Let the contact settle for a moment, then measure 2 s.
+    for (int i = 0; i < 5; ++i)
+      w.step(1.0f / 60.0f);
+    const Vec2 p0 = w.position(box);
+    const float v0 = rc::dot(w.linearVelocity(box), along);
+    for (int i = 0; i < 120; ++i)
+      w.step(1.0f / 60.0f);
+    const float moved = -rc::dot(w.position(box) - p0, along);  // down the slope
+    const float a = g * (std::sin(angle) - mu * std::cos(angle));
+    std::printf("mu %.2f: moved %.5f m (expected %.5f)\n", mu, moved,
+                a > 0 ? -v0 * 2.0f + 0.5f * a * 4.0f : 0.0f);
+    if (mu >= std::tan(angle)) {
+      EXPECT_LT(std::abs(moved), 1e-3f) << mu;
+    } else {
+      const float expected = -v0 * 2.0f + 0.5f * a * 2.0f * 2.0f;
+      EXPECT_NEAR(moved / expected, 1.0f, 0.02f) << mu;
+    }
+  }
+}
+
+// With nothing touching, a body follows the world's integrator exactly: a spring pulling a
+// body to the origin stepped by the world and by the integrator directly (float velocities,
+// double positions, as the world keeps them) give the same numbers.
+TEST(World, FreeBodiesFollowTheIntegratorExactly) {
+  for (rc::Integrator m : rc::kIntegrators) {
+    rc::WorldDef def;
+    def.gravity = {0, 0};
+    def.integrator = m;
+    def.substeps = 4;
+    rc::World w(def);
+    BodyId body = w.createBody(dynamicAt({1, 0}));
+    w.createShape(body, rc::makeCircle({}, 0.1f));
+    const float k = 40.0f, mass = w.mass(body);
+    w.addForceField([&](rc::ForceStage& s) { s.addForce(body, -k * s.center(body)); });
+    double q[3] = {1, 0, 0};
+    float v[3] = {0, 0, 0};
+    rc::IntegratorScratch<float, double> scratch;
+    const float h = 1.0f / 240.0f;
+    // The force field sees the centre as a float (ForceStage::center).
+    auto spring = [&](std::span<const double> x, std::span<const float>, double,
+                      std::span<float> a) {
+      a[0] = (1.0f / mass) * (-k * static_cast<float>(x[0]));
+      a[1] = (1.0f / mass) * (-k * static_cast<float>(x[1]));
+      a[2] = 0;
+    };
+    for (int i = 0; i < 60; ++i) {
+      w.step(1.0f / 60.0f);
+      for (int sub = 0; sub < 4; ++sub)
+        rc::integrate<float, double>(m, q, v, 0.0f, h, spring, scratch);
+    }
+    EXPECT_EQ(w.precisePosition(body)[0], q[0]) << rc::integratorName(m);
+    EXPECT_EQ(w.linearVelocity(body).x, v[0]) << rc::integratorName(m);
+  }
+}
+
+// Random piles in a bin: circles, boxes, capsules and polygons with restitution up to 1 and any
+// friction, dropped from rest without overlap. Contacts may only take energy out: over 3000
+// steps the total (kinetic plus potential above the floor) never exceeds 1.001 times the start.
+TEST(World, EnergyNeverRises) {
+  for (std::uint64_t seed : {31u, 32u}) {
+    rc::Random rng(seed);
+    rc::World w;
+    rc::BodyDef binDef;
+    BodyId bin = w.createBody(binDef);
+    w.createShape(bin, rc::makeBox(10, 0.5f, {0, -0.5f}));  // floor top at y = 0
+    w.createShape(bin, rc::makeBox(0.5f, 15, {-10.5f, 15}));
+    w.createShape(bin, rc::makeBox(0.5f, 15, {10.5f, 15}));
+    for (int i = 0; i < 60; ++i) {
+      // A grid of 1.6 m cells: the shapes (at most 1.4 m across) never start overlapping.
+      const Vec2 p{-8.0f + 1.6f * static_cast<float>(i % 10),
+                   1.0f + 1.6f * static_cast<float>(i / 10)};
+      BodyId b = w.createBody(dynamicAt(p, rng.uniform(-3, 3)));
+      rc::ShapeDef sd;
+      sd.restitution = rng.uniform();
+      sd.friction = rng.uniform();
+      switch (rng.below(4)) {
+        case 0:
+          w.createShape(b, rc::makeCircle({}, rng.uniform(0.2f, 0.7f)), sd);
+          break;
+        case 1:
+          w.createShape(b, rc::makeBox(rng.uniform(0.2f, 0.5f), rng.uniform(0.2f, 0.5f)), sd);
+          break;
+        case 2:
+          w.createShape(b, rc::makeCapsule({-0.3f, 0}, {0.3f, 0}, rng.uniform(0.1f, 0.35f)), sd);
+          break;
+        default: {
+          const Vec2 pts[] = {{-0.5f, -0.4f}, {0.5f, -0.3f}, {0.3f, 0.5f}, {-0.4f, 0.3f}};
+          w.createShape(b, rc::makePolygon(pts), sd);
+        }
+      }
+    }
+    const auto [start, highest, nonFinite] = stepWatchingEnergy(w, 3000);
+    ASSERT_EQ(nonFinite, -1) << "seed " << seed;
+    std::printf("seed %llu: start %.3f J, highest %.3f J (%.6f), end %.3f J\n",
+                static_cast<unsigned long long>(seed), start, highest, highest / start, w.energy());
+    EXPECT_LE(highest, 1.001 * start) << seed;
+    EXPECT_LT(w.energy(), start) << seed;
+  }
+}
+
+// Bodies born overlapping are pushed apart, never bounced apart: a bouncy circle created inside
+// the overlap of two static boxes, squeezed from above and below at once, must not gain speed.
+// Restitution once took the push-out's speed for an impact and reversed it off both faces in
+// turn: the circle's speed doubled every few steps (86 m/s after 9 steps in a 5000-circle arena).
+TEST(World, OverlapsArePushedOutNotBounced) {
+  rc::WorldDef def;
+  def.gravity = {0, 0};
+  rc::World w(def);
+  rc::BodyDef wallDef;
+  BodyId walls = w.createBody(wallDef);
+  rc::ShapeDef bouncy;
+  bouncy.restitution = 0.8f;
+  w.createShape(walls, rc::makeBox(2, 1, {0, 0.8f}), bouncy);
+  w.createShape(walls, rc::makeBox(2, 1, {0, -0.8f}), bouncy);
+  rc::BodyDef circleDef = dynamicAt({0.3f, 0.05f});
+  circleDef.linearVelocity = {0.5f, -2.0f};
+  BodyId circle = w.createBody(circleDef);
+  w.createShape(circle, rc::makeCircle({}, 0.5f), bouncy);
+  float fastest = 0;
+  for (int i = 0; i < 600; ++i) {
+    w.step(1.0f / 60.0f);
+    const Vec2 v = w.linearVelocity(circle);
+    ASSERT_TRUE(std::isfinite(v.x) && std::isfinite(v.y)) << "step " << i;
+    fastest = std::max(fastest, rc::length(v));
+  }
+  std::printf("fastest %.3f m/s (push-out limit %.1f m/s)\n", fastest, def.maxPushoutSpeed);
+  // Faster than it started only by what the push-out may add.
+  EXPECT_LT(fastest, rc::length(circleDef.linearVelocity) + def.maxPushoutSpeed);
+}
+
+// A body with more contacts than the solver has colours: 40 boxes resting on one 40 m plank put
+// 41 constraints on the plank, and those past the colours are solved one at a time after them.
+// Everything still comes to rest where it should.
+TEST(World, BodyWithMoreContactsThanColoursRests) {
+  rc::WorldDef def;
+  def.enableSleep = false;  // so the last step's solver counts are the settled scene's
+  rc::World w(def);
+  ground(w);  // top face at y = 0
+  BodyId plank = w.createBody(dynamicAt({0, 0.25f}));
+  w.createShape(plank, rc::makeBox(20, 0.25f));
+  std::vector<BodyId> boxes;
+  for (int i = 0; i < 40; ++i) {
+    BodyId b = w.createBody(dynamicAt({-19.5f + static_cast<float>(i), 0.75f}));
+    w.createShape(b, rc::makeBox(0.25f, 0.25f));
+    boxes.push_back(b);
+  }
+  for (int i = 0; i < 300; ++i)
+    w.step(1.0f / 60.0f);
+  std::printf("colours %d, constraints one at a time %d\n", w.profile().colours,
+              w.profile().overflow);
+  EXPECT_GT(w.profile().overflow, 0);
+  // Each layer of contact rests within the linear slop: one layer under the plank, two under
+  // a box (with room for rounding).
+  EXPECT_NEAR(w.position(plank).y, 0.25f, 2.0f * rc::kLinearSlop);
+  for (BodyId b : boxes) {
+    EXPECT_NEAR(w.position(b).y, 0.75f, 3.0f * rc::kLinearSlop);
+    EXPECT_NEAR(std::fabs(w.angle(b)), 0.0f, 1e-3f);
+    EXPECT_LT(rc::length(w.linearVelocity(b)), 0.01f);
+  }
+}
+
+// Box2D's vertical stack: 15 boxes of 1 m on the ground stand upright and fall asleep.
+TEST(World, VerticalStackStands) {
+  rc::World w;
+  ground(w);
+  std::vector<BodyId> boxes;
+  for (int i = 0; i < 15; ++i) {
+    BodyId b = w.createBody(dynamicAt({0, 0.5f + 1.0f * static_cast<float>(i)}));
+    w.createShape(b, rc::makeBox(0.5f, 0.5f));
+    boxes.push_back(b);
+  }
+  for (int i = 0; i < 600; ++i)
+    w.step(1.0f / 60.0f);
+  const Vec2 top = w.position(boxes.back());
+  std::printf("top box at (%.4f, %.4f), exact 14.5\n", top.x, top.y);
+  EXPECT_NEAR(top.x, 0.0f, 0.01f);
+  EXPECT_NEAR(top.y, 14.5f, 0.05f);
+  for (BodyId b : boxes)
+    EXPECT_LT(rc::length(w.linearVelocity(b)), 0.01f);
+  // It has gone to sleep as one island, and a push on the top box wakes all of it.
+  EXPECT_EQ(w.awakeBodyCount(), 0);
+  const rc::Vec2 before = w.position(boxes.back());
+  w.applyLinearImpulse(boxes.back(), {2, 0}, w.worldCenter(boxes.back()));
+  EXPECT_EQ(w.awakeBodyCount(), 15);
+  for (int i = 0; i < 10; ++i)
+    w.step(1.0f / 60.0f);
+  EXPECT_GT(w.position(boxes.back()).x, before.x + 0.05f);
+}
+
+// A pyramid of 210 touching 1 m boxes (base 20, friction 0.6) stays up, its top within 5 cm of
+// its exact resting height (19.5 m) after 10 s. (Base 40 is in the world benchmark.)
+TEST(World, PyramidStaysUp) {
+  rc::World w;
+  rc::BodyDef groundDef;
+  groundDef.position = {0, -1};
+  BodyId g = w.createBody(groundDef);
+  w.createShape(g, rc::makeBox(100, 1));
+  BodyId top;
+  const int base = 20;
+  for (int row = 0; row < base; ++row)
+    for (int i = 0; i < base - row; ++i) {
+      top =
+          w.createBody(dynamicAt({static_cast<float>(i) - 0.5f * static_cast<float>(base - row - 1),
+                                  0.5f + static_cast<float>(row)}));
+      w.createShape(top, rc::makeBox(0.5f, 0.5f));
+    }
+  for (int i = 0; i < 600; ++i) {
+    w.step(1.0f / 60.0f);
+    ASSERT_TRUE(finiteState(w)) << "step " << i;
+  }
+  const Vec2 p = w.position(top);
+  std::printf("pyramid top at (%.4f, %.4f), exact (0, 19.5)\n", p.x, p.y);
+  EXPECT_NEAR(p.y, 19.5f, 0.05f);
+  EXPECT_NEAR(p.x, 0.0f, 0.05f);
+  EXPECT_LT(rc::length(w.linearVelocity(top)), 0.01f);
+}
+
+// A 20 m box resting on two 1 m boxes: a mass ratio of 400 across every contact. It holds: the
+// small boxes neither squirt out nor tip, the big one stays level and, within 30 s, everything
+// comes to rest (with velocity Verlet and RK4 the load rings on the soft contacts for about
+// 15 s, +-2 cm at 0.15 m/s, before it settles; semi-implicit Euler settles sooner).
+// What it does not do is rest on the surfaces: a soft contact (WorldDef::contactHertz) is a
+// spring whose stiffness is relative to the contact's own effective mass m_eff, so it settles
+// where the load it carries, over m_eff, equals omega^2 times the overlap. For a 1 m box under
+// half of a 400 times heavier one that is (M/2 + m) g / m / omega^2 = 5.7 cm at 30 Hz, at the
+// ground and again at the big box (0.28 mm for a box under its own weight). The test holds the
+// overlaps to that law within 10%, so a solver that sank further, or one that stiffened the
+// contact, would show here; resting on the surfaces would need rigid position correction under
+// heavy loads (Box2D 2.4.1's approach), not done.
+TEST(World, HeavyBoxOnTwoLightBoxesHolds) {
+  for (rc::Integrator integrator :
+       {rc::Integrator::semiImplicitEuler, rc::Integrator::velocityVerlet, rc::Integrator::rk4}) {
+    rc::WorldDef def;
+    def.integrator = integrator;
+    rc::World w(def);
+    ground(w);
+    const float xs[] = {-8.0f, 8.0f};
+    std::vector<BodyId> small;
+    for (float x : xs) {
+      small.push_back(w.createBody(dynamicAt({x, 0.5f})));
+      w.createShape(small.back(), rc::makeBox(0.5f, 0.5f));
+    }
+    BodyId big = w.createBody(dynamicAt({0.0f, 11.0f}));
+    w.createShape(big, rc::makeBox(10.0f, 10.0f));
+    const float m = w.mass(small[0]), bigMass = w.mass(big);
+    ASSERT_NEAR(bigMass / m, 400.0f, 1e-3f);
+    const float omega = 2.0f * rc::kPi * def.contactHertz;
+    const float soft = (0.5f * bigMass + m) * 10.0f / m / (omega * omega);
+    float deepest = 0.0f, farthest = 0.0f;
+    for (int i = 0; i < 1800; ++i) {
+      w.step(1.0f / 60.0f);
+      ASSERT_TRUE(finiteState(w)) << "step " << i;
+      deepest = std::max(deepest, 1.0f - (w.position(big).y - 10.0f));
+      for (int k = 0; k < 2; ++k)
+        farthest = std::max(farthest, std::fabs(w.position(small[k]).x - xs[k]));
+    }
+    const float groundOverlap = 0.5f - 0.5f * (w.position(small[0]).y + w.position(small[1]).y);
+    const float boxOverlap = w.position(small[0]).y + 0.5f - (w.position(big).y - 10.0f);
+    const std::string what(rc::integratorName(integrator));
+    std::printf(
+        "%s: at rest overlaps %.4f m at the ground, %.4f m under the big box "
+        "(soft-contact law %.4f m), big box angle %.2g; on the way the big box sank "
+        "%.4f m at most, small boxes strayed %.4f m at most\n",
+        what.c_str(), groundOverlap, boxOverlap, soft, w.angle(big), deepest, farthest);
+    // On the way: never more than twice the law's sinking (both contacts, with overshoot), the
+    // small boxes not pushed aside.
+    EXPECT_LT(deepest, 2.0f * 2.0f * soft) << what;
+    EXPECT_LT(farthest, 0.02f) << what;
+    EXPECT_NEAR(groundOverlap, soft, 0.1f * soft) << what;
+    EXPECT_NEAR(boxOverlap, soft, 0.1f * soft) << what;
+    EXPECT_NEAR(w.position(big).x, 0.0f, 0.01f) << what;
+    EXPECT_LT(std::fabs(w.angle(big)), 1e-3f) << what;
+    EXPECT_LT(rc::length(w.linearVelocity(big)), 1e-3f) << what;
+    for (int k = 0; k < 2; ++k) {
+      EXPECT_NEAR(w.position(small[k]).x, xs[k], 0.01f) << what;
+      EXPECT_LT(std::fabs(w.angle(small[k])), 3e-3f) << what;
+      EXPECT_LT(rc::length(w.linearVelocity(small[k])), 1e-3f) << what;
+    }
+  }
 }
 
 }  // namespace

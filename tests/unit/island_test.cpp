@@ -1,0 +1,91 @@
+// Islands and sleep (physics/island.cpp): sleeping islands wake on contact, forces and the
+// queries that ask; the rest stay asleep.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "physics/random.h"
+#include "physics/world.h"
+#include "support/world_scenes.h"
+
+namespace {
+
+using rc::BodyId;
+using rc::Vec2;
+using rc::testing::dynamicAt;
+using rc::testing::finiteState;
+using rc::testing::ground;
+using rc::testing::restingRow;
+using rc::testing::stepWatchingEnergy;
+
+// Sleeping bodies cost no step time and keep their state; a body dropped on them wakes them.
+TEST(World, SleepingIslandsWakeOnContact) {
+  rc::World w;
+  const std::vector<BodyId> row = restingRow(w, 5, 2.0f);
+  EXPECT_EQ(w.awakeBodyCount(), 0);  // five islands of one, all asleep
+  auto positions = [&] {
+    std::vector<double> out;
+    for (BodyId body : row)
+      for (double x : w.precisePosition(body))
+        out.push_back(x);
+    return out;
+  };
+  const std::vector<double> asleep = positions();
+  for (int i = 0; i < 30; ++i)
+    w.step(1.0f / 60.0f);
+  EXPECT_EQ(positions(), asleep);  // nothing moved
+  // A ball dropped on box 2 wakes box 2 only.
+  BodyId ball = w.createBody(dynamicAt({4.0f, 3.0f}));
+  w.createShape(ball, rc::makeCircle({}, 0.25f));
+  bool woke = false;
+  for (int i = 0; i < 60 && !woke; ++i) {
+    w.step(1.0f / 60.0f);
+    woke = w.isAwake(row[2]);
+  }
+  EXPECT_TRUE(woke);
+  EXPECT_FALSE(w.isAwake(row[0]));
+  EXPECT_FALSE(w.isAwake(row[4]));
+}
+
+// What wakes a sleeping island besides a contact: a force or torque (also on the next step),
+// a query that asks (Wake::yes), and not a query that does not, nor a force rejected as NaN.
+TEST(World, ForcesAndAskingQueriesWakeSleepers) {
+  rc::World w;
+  const std::vector<BodyId> row = restingRow(w, 4, 3.0f);
+  ASSERT_EQ(w.awakeBodyCount(), 0);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_THROW(w.applyForceToCenter(row[0], {nan, 0}), rc::InvalidDefinition);
+  EXPECT_THROW(w.applyTorque(row[0], nan), rc::InvalidDefinition);
+  EXPECT_EQ(w.awakeBodyCount(), 0);  // a rejected call changes nothing
+  // A force wakes the body it pushes, and it moves in the next step.
+  w.applyForceToCenter(row[0], {200, 0});
+  EXPECT_TRUE(w.isAwake(row[0]));
+  EXPECT_EQ(w.awakeBodyCount(), 1);
+  const float x0 = w.position(row[0]).x;
+  w.step(1.0f / 60.0f);
+  EXPECT_GT(w.position(row[0]).x, x0);
+  w.applyTorque(row[1], 5.0f);
+  EXPECT_TRUE(w.isAwake(row[1]));
+  // Queries: the plain ones leave sleepers asleep, the asking ones wake what they report only.
+  const rc::AABB around2{{5.5f, 0.2f}, {6.5f, 0.8f}};  // box 2 spans x 5.5..6.5
+  EXPECT_EQ(w.overlapAABB(around2).size(), 1u);        // box 2 (the ground's top is y = 0)
+  EXPECT_FALSE(w.isAwake(row[2]));
+  EXPECT_EQ(w.overlapAABB(around2, {}, rc::World::Wake::yes).size(), 1u);
+  EXPECT_TRUE(w.isAwake(row[2]));
+  EXPECT_FALSE(w.isAwake(row[3]));
+  ASSERT_TRUE(w.castRay({9, 5}, {0, -10}).has_value());
+  EXPECT_FALSE(w.isAwake(row[3]));
+  const auto hit = w.castRay({9, 5}, {0, -10}, {}, rc::World::Wake::yes);
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_EQ(hit->body, row[3]);
+  EXPECT_TRUE(w.isAwake(row[3]));
+}
+
+}  // namespace

@@ -75,10 +75,8 @@ void WorldState::destroyContact(std::size_t index, bool destroyed) {
 
 // The solver keeps a speculative point's gap from closing along the normal the manifold had at
 // the start of the step: a linearisation, exact for bodies that approach head on, wrong for
-// bodies that pass each other or meet at a glance. Two bullets crossing paths diagonally, 3 m
-// apart with 220 m/s of approach along that normal, were pushed apart (and bounced, restitution
-// 0.8) though their discs never came closer than 1.1 m; two passing side by side 5 cm apart
-// bounced off each other; two grazing ones bounced back head on. So the manifold of a fast pair
+// bodies that pass each other or meet at a glance (fast pairs passing close by would be pushed
+// apart, grazing ones bounced back head on: ghost collisions). So the manifold of a fast pair
 // (margin beyond kSpeculativeDistance) whose every point is still farther than that, and whose
 // linearised gap closes within the step, is taken where the pair actually meets: both bodies
 // moved at their present velocities (gravity adds 1.4 mm in a 60 Hz step, well inside the

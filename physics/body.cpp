@@ -172,6 +172,7 @@ void WorldState::takeSlot(std::int32_t index, Vec2 velocity, float angularVeloci
   const Vec2 c = apply(b.xf, b.localCenter);
   q_.insert(q_.end(), {c.x, c.y, b.angle});
   v_.insert(v_.end(), {velocity.x, velocity.y, angularVelocity});
+  stillFrom_.insert(stillFrom_.end(), {0.0, 0.0});
   swapSlots(b.slot, awakeCount_);
   ++awakeCount_;
 }
@@ -189,6 +190,7 @@ void WorldState::releaseSlot(Body& b) {
   slotBody_.pop_back();
   q_.resize(q_.size() - 3);
   v_.resize(v_.size() - 3);
+  stillFrom_.resize(stillFrom_.size() - 2);
   b.slot = -1;
 }
 
@@ -199,6 +201,9 @@ void WorldState::swapSlots(std::int32_t a, std::int32_t b) {
     std::swap(q_[ia + k], q_[ib + k]);
     std::swap(v_[ia + k], v_[ib + k]);
   }
+  for (std::size_t k = 0; k < 2; ++k)
+    std::swap(stillFrom_[2 * static_cast<std::size_t>(a) + k],
+              stillFrom_[2 * static_cast<std::size_t>(b) + k]);
   std::swap(slotBody_[static_cast<std::size_t>(a)], slotBody_[static_cast<std::size_t>(b)]);
   bodies_[static_cast<std::size_t>(slotBody_[static_cast<std::size_t>(a)])].slot = a;
   bodies_[static_cast<std::size_t>(slotBody_[static_cast<std::size_t>(b)])].slot = b;

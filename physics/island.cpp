@@ -52,14 +52,18 @@ void WorldState::updateSleep(float dt) {
       b.sleepTime = 0.0f;
       continue;
     }
-    const std::array<double, 2> at{q_[3 * s], q_[3 * s + 1]};
-    if (b.sleepTime == 0.0f) b.stillFrom = at;
+    double* from = &stillFrom_[2 * s];
+    if (b.sleepTime == 0.0f) {
+      from[0] = q_[3 * s];
+      from[1] = q_[3 * s + 1];
+    }
     b.sleepTime += dt;
-    const double dx = at[0] - b.stillFrom[0], dy = at[1] - b.stillFrom[1];
+    const double dx = q_[3 * s] - from[0], dy = q_[3 * s + 1] - from[1];
     const double reach = static_cast<double>(def_.linearSleepTolerance) * b.sleepTime;
     if (dx * dx + dy * dy > reach * reach) {
       b.sleepTime = dt;
-      b.stillFrom = at;
+      from[0] = q_[3 * s];
+      from[1] = q_[3 * s + 1];
     }
   }
   if (!def_.enableSleep || n == 0) return;

@@ -232,7 +232,7 @@ void ioState(A& a, W& s) {
   a(s.bodyCount_);
   a(s.shapeCount_);
   a(s.awakeCount_);
-  list(a, s.bodies_, 94, [&](auto& b) {  // (the least bytes of each item)
+  list(a, s.bodies_, 78, [&](auto& b) {  // (the least bytes of each item)
     a(b.type, 3);
     for (auto* flag : {&b.alive, &b.fixedRotation, &b.bullet, &b.allowSleep, &b.enabled})
       a(*flag);
@@ -244,8 +244,6 @@ void ioState(A& a, W& s) {
     a(b.force);
     for (auto* f : {&b.torque, &b.linearDamping, &b.angularDamping, &b.gravityScale, &b.sleepTime})
       a(*f);
-    a(b.stillFrom[0]);
-    a(b.stillFrom[1]);
     a(b.island);
     a(b.userData);
     a(b.slot);
@@ -294,11 +292,14 @@ void ioState(A& a, W& s) {
   if constexpr (A::reading) {
     s.q_.resize(3 * s.slotBody_.size());
     s.v_.resize(3 * s.slotBody_.size());
+    s.stillFrom_.resize(2 * s.slotBody_.size());
   }
   for (std::size_t k = 0; k < s.q_.size(); ++k) {
     a(s.q_[k]);
     a(s.v_[k]);
   }
+  for (auto& x : s.stillFrom_)
+    a(x);
   list(a, s.islands_, 4, [&](auto& island) { indices(a, island); });
   indices(a, s.freeIslands_);
   indices(a, s.pendingRefit_);
@@ -385,8 +386,7 @@ void decode(ByteReader& r, WorldState& s) {
     need(isFinite(b.xf.p) && std::isfinite(b.angle) && isFinite(b.force) &&
              std::isfinite(b.torque) && std::isfinite(b.linearDamping) &&
              std::isfinite(b.angularDamping) && std::isfinite(b.gravityScale) &&
-             std::isfinite(b.sleepTime) && std::isfinite(b.stillFrom[0]) &&
-             std::isfinite(b.stillFrom[1]) && std::fabs(c * c + sn * sn - 1.0f) < 1e-4f,
+             std::isfinite(b.sleepTime) && std::fabs(c * c + sn * sn - 1.0f) < 1e-4f,
          "a body's state is not finite");
   }
   for (const WorldState::ShapeRecord& rec : s.shapes_) {
@@ -414,6 +414,8 @@ void decode(ByteReader& r, WorldState& s) {
   // (A position floats cannot hold would overflow the step's boxes.)
   for (std::size_t k = 0; k < s.q_.size(); ++k)
     need(std::fabs(s.q_[k]) < 1e30 && std::isfinite(s.v_[k]), "a body's state is out of range");
+  for (const double x : s.stillFrom_)
+    need(std::isfinite(x), "a body's state is out of range");
 
   // Every index in range and every cross-reference consistent: what the step relies on.
   const auto bodies = static_cast<std::int32_t>(s.bodies_.size());

@@ -73,9 +73,8 @@ class WorldState {
     float minExtent = 0, maxExtent = 0;  // for continuous collision (see continuous())
     bool allowSleep = true;
     bool enabled = true;
-    float sleepTime = 0;                // how long it has been still (see updateSleep)
-    std::array<double, 2> stillFrom{};  // its centre of mass when it became still
-    std::int32_t island = -1;           // its sleeping island, -1 while awake
+    float sleepTime = 0;       // how long it has been still (see updateSleep)
+    std::int32_t island = -1;  // its sleeping island, -1 while awake
     std::uint64_t userData = 0;
     std::int32_t slot = -1;  // in q_ and v_; -1 for static bodies
     // Every shape a circle about the centre of mass: turning moves none of its contact
@@ -287,6 +286,9 @@ class WorldState {
   std::vector<double> q_;
   std::vector<float> v_;
   std::vector<std::int32_t> slotBody_;
+  // Per slot, x and y of the centre of mass where the body became still (see updateSleep): kept
+  // with the slots, which the sleep pass walks, not in the bodies it would have to fetch.
+  std::vector<double> stillFrom_;
   // Slots [0, awakeCount_) are awake; sleeping bodies' slots follow, untouched by the step.
   int awakeCount_ = 0;
   std::vector<std::vector<std::int32_t>> islands_;  // sleeping islands: their bodies

@@ -35,6 +35,8 @@ class Random {
     return static_cast<std::uint32_t>(((next() >> 32) * static_cast<std::uint64_t>(n)) >> 32);
   }
   constexpr Vec2 inBox(Vec2 lo, Vec2 hi) { return {uniform(lo.x, hi.x), uniform(lo.y, hi.y)}; }
+  // The whole state: Random(state()) continues the same sequence (snapshots, hashes).
+  constexpr std::uint64_t state() const { return state_; }
 
  private:
   std::uint64_t state_;

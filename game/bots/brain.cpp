@@ -1,0 +1,92 @@
+// The decide phase: players take the input they were given; bots, and players without one (the
+// autopilot), choose theirs from what they perceive: an enemy in sight is shot at (with aim
+// error) while keeping a fighting distance; one seen lately is looked for where it was last
+// seen; otherwise the bot walks to goals picked among the level's points.
+#include <cmath>
+
+#include "game/bots/sight.h"
+#include "physics/trig.h"
+
+namespace game {
+namespace {
+
+constexpr float kAimError = 0.06f;           // rad, either way
+constexpr float kFar = 10.0f, kNear = 4.0f;  // m: the distance it keeps from an enemy
+constexpr std::int64_t kMemoryTicks = 3 * kTicksPerSecond;
+constexpr std::int64_t kGoalTicks = 10 * kTicksPerSecond;
+constexpr int kStuckTicks = kTicksPerSecond;
+
+float angleOf(rc::Vec2 d) {
+  return rc::atan2(d.y, d.x);
+}
+
+// Somewhere to walk to: a spawn, pickup, marker or path point of the level, at random.
+rc::Vec2 pickGoal(MatchState& s, rc::Vec2 fallback) {
+  std::vector<rc::Vec2> points;
+  for (const LevelSpawn& p : s.built.spawns)
+    points.push_back(p.position);
+  for (const LevelPickup& p : s.built.pickups)
+    points.push_back(p.position);
+  for (const LevelMarker& p : s.built.markers)
+    points.push_back(p.position);
+  for (const LevelPath& path : s.built.paths)
+    for (rc::Vec2 p : path.points)
+      points.push_back(p);
+  if (points.empty()) return fallback;
+  return points[s.rng.below(static_cast<std::uint32_t>(points.size()))];
+}
+
+PlayerInput decide(MatchState& s, std::size_t i) {
+  Actor& a = s.actors[i];
+  BotMind& mind = s.minds[i];
+  const rc::Vec2 at = s.world->worldCenter(a.body);
+  const std::optional<std::size_t> enemy = nearestSeenEnemy(s, i);
+  if (enemy) {
+    mind.target = enemy;
+    mind.lastSeen = s.world->worldCenter(s.actors[*enemy].body);
+    mind.lastSeenTick = s.tick;
+    const rc::Vec2 d = mind.lastSeen - at;
+    const float distance = rc::length(d);
+    const rc::Vec2 toward = distance > 0.0f ? (1.0f / distance) * d : rc::Vec2{1, 0};
+    if ((s.tick + static_cast<std::int64_t>(i) * 17) % 90 == 0) mind.strafe = -mind.strafe;
+    rc::Vec2 move = mind.strafe * rc::Vec2{-toward.y, toward.x};
+    if (distance > kFar) move = toward;
+    if (distance < kNear) move = -toward;
+    const float aim = angleOf(d) + s.rng.uniform(-kAimError, kAimError);
+    return makeInput(move, aim, kButtonFire, 0);
+  }
+  rc::Vec2 goal;
+  if (mind.lastSeenTick >= 0 && s.tick - mind.lastSeenTick < kMemoryTicks) {
+    goal = mind.lastSeen;  // where the enemy was: look there
+  } else {
+    const bool reached = mind.goalTick >= 0 && rc::distanceSquared(at, mind.goal) < 1.0f;
+    if (mind.goalTick < 0 || reached || s.tick - mind.goalTick > kGoalTicks ||
+        mind.stuckTicks > kStuckTicks) {
+      mind.goal = pickGoal(s, at);
+      mind.goalTick = s.tick;
+      mind.stuckTicks = 0;
+    }
+    goal = mind.goal;
+  }
+  const rc::Vec2 d = goal - at;
+  if (rc::lengthSquared(d) < 0.01f) return makeInput({}, a.aim, 0, 0);
+  const bool barelyMoving = rc::lengthSquared(s.world->linearVelocity(a.body)) < 0.25f;
+  mind.stuckTicks = barelyMoving ? mind.stuckTicks + 1 : 0;
+  return makeInput(rc::normalize(d), angleOf(d), 0, 0);
+}
+
+}  // namespace
+
+void decideBots(MatchState& s, std::span<const PlayerInput> inputs) {
+  std::size_t player = 0;
+  for (std::size_t i = 0; i < s.actors.size(); ++i) {
+    Actor& a = s.actors[i];
+    if (a.kind == ActorKind::player && player++ < inputs.size()) {
+      a.input = inputs[player - 1];
+      continue;
+    }
+    a.input = a.alive ? decide(s, i) : PlayerInput{};
+  }
+}
+
+}  // namespace game

@@ -1,0 +1,75 @@
+#include "game/match/match.h"
+
+#include <bit>
+#include <stdexcept>
+#include <utility>
+
+#include "game/match/actors.h"
+
+namespace game {
+
+std::optional<GameRef> gameRefOf(std::uint64_t userData) {
+  if ((userData & (std::uint64_t{0xFF} << 56)) != kGameUserDataTag) return std::nullopt;
+  const auto kind = static_cast<std::uint8_t>(userData >> 48);
+  if (kind > static_cast<std::uint8_t>(GameKind::projectile)) return std::nullopt;
+  return GameRef{static_cast<GameKind>(kind), static_cast<std::size_t>(userData & 0xFFFFFFFFu)};
+}
+
+Match::Match(Level level, const MatchConfig& config) {
+  if (config.players < 0 || config.bots < -1)
+    throw std::invalid_argument("match: players and bots must not be negative");
+  s_.level = std::move(level);
+  s_.config = config;
+  s_.rng = rc::Random(config.seed);
+  s_.world = std::make_unique<rc::World>(levelWorldDef(s_.level));
+  s_.built = buildLevel(s_.level, *s_.world);
+  for (std::size_t i = 0; i < s_.level.objects.size(); ++i) {
+    const LevelObject& o = s_.level.objects[i];
+    if (o.material.health > 0.0f) s_.props.push_back({i, s_.built.bodies[i], o.material.health});
+  }
+  spawnActors(s_);
+}
+
+void Match::tick(std::span<const PlayerInput> inputs) {
+  MatchState& s = s_;
+  s.shots.clear();
+  decideBots(s, inputs);
+  moveActors(s);
+  fireWeapons(s);
+  s.world->step(kTickSeconds);
+  applyRules(s);
+  ++s.tick;
+}
+
+std::uint64_t Match::hash() const {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  auto mix = [&](std::uint64_t bits, int bytes) {
+    for (int k = 0; k < bytes; ++k) {
+      h ^= (bits >> (8 * k)) & 0xFFu;
+      h *= 0x100000001b3ull;
+    }
+  };
+  auto mixFloat = [&](float f) { mix(std::bit_cast<std::uint32_t>(f), 4); };
+  mix(s_.world->stateHash(), 8);
+  mix(static_cast<std::uint64_t>(s_.tick), 8);
+  mix(s_.rng.state(), 8);
+  for (const Actor& a : s_.actors) {
+    mix(a.alive, 1);
+    mixFloat(a.health);
+    mixFloat(a.aim);
+    mix(static_cast<std::uint64_t>(a.respawnTick), 8);
+    mix(static_cast<std::uint32_t>(a.kills), 4);
+    mix(static_cast<std::uint32_t>(a.deaths), 4);
+    mix(static_cast<std::uint32_t>(a.cooldown), 4);
+    mix(static_cast<std::uint32_t>(a.ammo), 4);
+    for (std::uint8_t b : toBytes(a.input))
+      mix(b, 1);
+  }
+  for (const PropState& p : s_.props) {
+    mixFloat(p.health);
+    mix(p.destroyed, 1);
+  }
+  return h;
+}
+
+}  // namespace game

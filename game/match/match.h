@@ -1,0 +1,142 @@
+// A match: a level, the physics world it is built into, the actors (players and bots) and what
+// they do, advanced one fixed tick at a time.
+//
+// The tick reads top to bottom (Quake III's G_RunFrame is the model; Match::tick):
+//   decide      every bot (and every player on autopilot) fills its input from what it perceives
+//   move        actors accelerate towards what their input asks
+//   weapons     shots are ray casts through the world, now, before the bodies move
+//   physics     the world steps once (World::step)
+//   rules       the step's events: damage, deaths, triggers; respawns that are due
+// Entities refer to bodies by handle and are created and removed between steps only. Randomness
+// comes from the match's own generator, seeded by the config; order is creation order.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "game/level/level.h"
+#include "game/level/level_builder.h"
+#include "game/match/input.h"
+#include "physics/random.h"
+#include "physics/world.h"
+
+namespace game {
+
+enum class ActorKind : std::uint8_t { player, bot };
+
+// Tuning shared by every actor (one table, so a level or a test can change it in one place).
+struct ActorTuning {
+  float radius = 0.35f;        // m
+  float density = 8.0f;        // kg/m^2 (a 3 kg disc: crates push back)
+  float maxSpeed = 5.0f;       // m/s
+  float acceleration = 40.0f;  // m/s^2
+  float health = 100.0f;
+  float respawnSeconds = 3.0f;
+};
+
+struct Actor {
+  ActorKind kind = ActorKind::bot;
+  int team = 0;
+  std::string name;
+  rc::BodyId body;
+  bool alive = true;
+  float health = 0.0f;
+  float aim = 0.0f;               // radians: where it faces (from its last input)
+  std::int64_t respawnTick = -1;  // while dead: the tick it comes back
+  int kills = 0, deaths = 0;
+  int cooldown = 0;  // ticks until its weapon can fire again
+  int ammo = 0;
+  PlayerInput input;  // this tick's
+};
+
+// A level prop that can be destroyed (its material's health above zero).
+struct PropState {
+  std::size_t object = 0;  // index in Level::objects
+  rc::BodyId body;
+  float health = 0.0f;
+  bool destroyed = false;
+};
+
+// What a shot did this tick, for the view and the tests: its path as straight segments (more
+// than one when it ricochets or passes through), and who it hit.
+struct Shot {
+  std::size_t shooter = 0;
+  std::vector<rc::Vec2> path;  // from the muzzle through every bounce to where it ended
+  std::vector<std::size_t> actorsHit;
+};
+
+// What a bot (or a player on autopilot) keeps between ticks: only what it perceived or chose.
+struct BotMind {
+  std::optional<std::size_t> target;  // the enemy it saw last
+  rc::Vec2 lastSeen{};                // where it saw it
+  std::int64_t lastSeenTick = -1;
+  rc::Vec2 goal{};             // where it is walking to when it sees no one
+  std::int64_t goalTick = -1;  // when it chose that goal
+  float strafe = 1.0f;         // which way it sidesteps while shooting
+  int stuckTicks = 0;          // ticks it has wanted to move and barely moved
+};
+
+struct MatchConfig {
+  int bots = -1;           // bots to field: -1 every bot spawn of the level; more reuse them
+  int players = 1;         // players, driven by the autopilot unless inputs are given
+  std::uint64_t seed = 1;  // the match's randomness (aim error, spawn choices)
+};
+
+// The whole match, open to the phase functions of game/ (each phase is a file of its own).
+struct MatchState {
+  Level level;
+  MatchConfig config;
+  ActorTuning tuning;
+  std::unique_ptr<rc::World> world;
+  BuiltLevel built;
+  std::vector<Actor> actors;
+  std::vector<BotMind> minds;  // one per actor
+  std::vector<PropState> props;
+  rc::Random rng{1};
+  std::int64_t tick = 0;
+  std::vector<Shot> shots;  // this tick's
+};
+
+// User data of the bodies and shapes a match creates (a level's carry levelUserData): a tag in
+// the top byte, the kind, and the index in its list.
+enum class GameKind : std::uint8_t { actor, projectile };
+inline constexpr std::uint64_t kGameUserDataTag = std::uint64_t{0x47} << 56;  // 'G'
+constexpr std::uint64_t gameUserData(GameKind kind, std::size_t index) {
+  return kGameUserDataTag | std::uint64_t{static_cast<std::uint8_t>(kind)} << 48 |
+         static_cast<std::uint32_t>(index);
+}
+struct GameRef {
+  GameKind kind;
+  std::size_t index;
+};
+std::optional<GameRef> gameRefOf(std::uint64_t userData);
+
+class Match {
+ public:
+  Match(Level level, const MatchConfig& config);
+
+  // One tick. `inputs` has one record per player (MatchState::actors' players, in order);
+  // players without one are driven by the autopilot.
+  void tick(std::span<const PlayerInput> inputs = {});
+
+  const MatchState& state() const { return s_; }
+  MatchState& state() { return s_; }
+  // FNV-1a over the world's state hash and the match's own state (actors, props, the
+  // generator, the tick), in creation order: equal hashes, equal futures.
+  std::uint64_t hash() const;
+
+ private:
+  MatchState s_;
+};
+
+// The phases of the tick, in its order (each in its own file).
+void decideBots(MatchState& s, std::span<const PlayerInput> inputs);  // bots/brain.cpp
+void moveActors(MatchState& s);                                       // match/movement.cpp
+void fireWeapons(MatchState& s);                                      // weapons/weapons.cpp
+void applyRules(MatchState& s);                                       // rules/rules.cpp
+
+}  // namespace game

@@ -1,7 +1,8 @@
 // The decide phase: players take the input they were given; bots, and players without one (the
 // autopilot), choose theirs from what they perceive: an enemy in sight is shot at (with aim
 // error) while keeping a fighting distance; one seen lately is looked for where it was last
-// seen; otherwise the bot walks to goals picked among the level's points.
+// seen (now and then throwing a grenade there: it may be behind cover); otherwise the bot walks to
+// goals picked among the level's points.
 #include <cmath>
 
 #include "game/bots/sight.h"
@@ -15,6 +16,11 @@ constexpr float kFar = 10.0f, kNear = 4.0f;  // m: the distance it keeps from an
 constexpr std::int64_t kMemoryTicks = 3 * kTicksPerSecond;
 constexpr std::int64_t kGoalTicks = 10 * kTicksPerSecond;
 constexpr int kStuckTicks = kTicksPerSecond;
+// A grenade goes where an enemy was last seen when it is this far (m: outside the blast, within
+// a throw's roll), the bot's turn comes (every 2 s, staggered across bots) and the first
+// kThrowNear m of the throw are clear (a grenade thrown into a wall comes back).
+constexpr float kThrowNear = 5.0f, kThrowFar = 12.0f;
+constexpr std::int64_t kThrowEvery = 2 * kTicksPerSecond;
 
 float angleOf(rc::Vec2 d) {
   return rc::atan2(d.y, d.x);
@@ -56,8 +62,26 @@ PlayerInput decide(MatchState& s, std::size_t i) {
     return makeInput(move, aim, kButtonFire, 0);
   }
   rc::Vec2 goal;
+  std::uint8_t buttons = 0;
   if (mind.lastSeenTick >= 0 && s.tick - mind.lastSeenTick < kMemoryTicks) {
     goal = mind.lastSeen;  // where the enemy was: look there
+    const std::optional<std::size_t> grenade = s.weapons.grenade();
+    const float distance = rc::length(goal - at);
+    // (Its hand is free in the weapons phase if the cooldown is at most 1: it counts down first.)
+    if (grenade && a.ammo[*grenade] > 0 && a.cooldown <= 1 && distance > kThrowNear &&
+        distance < kThrowFar && (s.tick + static_cast<std::int64_t>(i) * 13) % kThrowEvery == 0) {
+      const float radius = s.weapons.weapons[*grenade].grenade.radius;
+      const rc::Vec2 path = (kThrowNear / distance) * (goal - at);
+      const rc::QueryFilter others = rc::QueryFilter::ignoring(a.body, {0xFFFFFFFFu, 0xFFFFFFFFu});
+      if (!s.world->castCircle(at, radius, path, others)) {
+        // Thrown: stop walking after it and step back the other way instead.
+        buttons = kButtonThrow;
+        mind.lastSeenTick = -1;
+        mind.goal = at - path;
+        mind.goalTick = s.tick;
+        mind.stuckTicks = 0;
+      }
+    }
   } else {
     const bool reached = mind.goalTick >= 0 && rc::distanceSquared(at, mind.goal) < 1.0f;
     if (mind.goalTick < 0 || reached || s.tick - mind.goalTick > kGoalTicks ||
@@ -72,7 +96,7 @@ PlayerInput decide(MatchState& s, std::size_t i) {
   if (rc::lengthSquared(d) < 0.01f) return makeInput({}, a.aim, 0, 0);
   const bool barelyMoving = rc::lengthSquared(s.world->linearVelocity(a.body)) < 0.25f;
   mind.stuckTicks = barelyMoving ? mind.stuckTicks + 1 : 0;
-  return makeInput(rc::normalize(d), angleOf(d), 0, 0);
+  return makeInput(rc::normalize(d), angleOf(d), buttons, 0);
 }
 
 }  // namespace

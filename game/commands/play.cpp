@@ -1,7 +1,7 @@
-// `ricochet play LEVEL.tmj [--bots K] [--seed S] [--ticks N] [--json]`
+// `ricochet play LEVEL.tmj [--bots K] [--seed S] [--ticks N] [--weapons FILE] [--json]`
 // A headless match on a level, the players on autopilot: prints one summary line (ticks, kills,
-// shots, the final hash, ticks per second of wall time). What a recording will replay, and what
-// the determinism tests compare across builds.
+// shots, explosions, the final hash, ticks per second of wall time). What a recording will replay,
+// and what the determinism tests compare across builds.
 #include <CLI/CLI.hpp>
 
 #include <chrono>
@@ -14,6 +14,7 @@
 #include "game/level/level_error.h"
 #include "game/level/level_loader.h"
 #include "game/match/match.h"
+#include "game/weapons/weapon_table.h"
 
 namespace game {
 
@@ -28,6 +29,7 @@ int runPlay(std::span<const std::string_view> args) {
   std::uint64_t seed = 1;
   long long ticks = 60 * kTicksPerSecond;
   bool json = false;
+  std::string weaponsPath = bundledWeaponTablePath();
   app.add_option("level", levelPath, "the level (.tmj)")->required();
   app.add_option("--bots", bots, "bots to field (default: one per bot spawn)")
       ->check(CLI::Range(0, 256));
@@ -36,6 +38,7 @@ int runPlay(std::span<const std::string_view> args) {
   app.add_option("--seed", seed, "the match's randomness (default 1)");
   app.add_option("--ticks", ticks, "ticks to play at 60 per second (default 3600: a minute)")
       ->check(CLI::Range(0LL, 1LL << 31));
+  app.add_option("--weapons", weaponsPath, "the weapon table (default: the bundled one)");
   app.add_flag("--json", json, "the summary as a JSON object");
   std::vector<std::string> argv{"ricochet play"};
   for (std::string_view a : args)
@@ -59,12 +62,16 @@ int runPlay(std::span<const std::string_view> args) {
     config.bots = bots;
     config.players = players;
     config.seed = seed;
+    config.weapons = loadWeaponTable(weaponsPath);
     Match match(loadLevel(levelPath), config);
     const auto start = std::chrono::steady_clock::now();
-    std::size_t shots = 0;
+    std::size_t shots = 0, explosions = 0;
     for (long long t = 0; t < ticks; ++t) {
       match.tick();
-      shots += match.state().shots.size();
+      // Trigger pulls: a shotgun's pellets count once.
+      for (const Shot& shot : match.state().shots)
+        shots += shot.pellet == 0;
+      explosions += match.state().explosions.size();
       if (ticks >= 60000 && t % 60000 == 0 && t > 0)
         std::fprintf(stderr, "ricochet play: tick %lld of %lld\n", t, ticks);
     }
@@ -80,15 +87,18 @@ int runPlay(std::span<const std::string_view> args) {
     if (json) {
       std::printf(
           "{\"ticks\": %lld, \"actors\": %zu, \"kills\": %d, \"deaths\": %d, \"shots\": %zu, "
-          "\"hash\": \"%016llx\", \"ticks_per_second\": %.0f}\n",
-          ticks, match.state().actors.size(), kills, deaths, shots, hash, rate);
+          "\"explosions\": %zu, \"hash\": \"%016llx\", \"ticks_per_second\": %.0f}\n",
+          ticks, match.state().actors.size(), kills, deaths, shots, explosions, hash, rate);
     } else {
       std::printf(
-          "ticks %lld actors %zu kills %d deaths %d shots %zu hash %016llx "
+          "ticks %lld actors %zu kills %d deaths %d shots %zu explosions %zu hash %016llx "
           "ticks_per_second %.0f\n",
-          ticks, match.state().actors.size(), kills, deaths, shots, hash, rate);
+          ticks, match.state().actors.size(), kills, deaths, shots, explosions, hash, rate);
     }
     return 0;
+  } catch (const WeaponTableError& e) {
+    std::fprintf(stderr, "ricochet play: %s\n", e.what());
+    return 1;
   } catch (const LevelError& e) {
     std::fprintf(stderr, "ricochet play: %s\n", e.what());
     return 1;

@@ -35,7 +35,7 @@ void spawnActors(MatchState& s) {
     a.team = kind == ActorKind::player ? 0 : 1;
     a.name = (kind == ActorKind::player ? "player " : "bot ") + std::to_string(number + 1);
     a.health = s.tuning.health;
-    a.ammo = kRifle.ammoPerSpawn;
+    arm(a, s.weapons);
     a.aim = spawn.facing;
     const std::size_t index = s.actors.size();
     rc::BodyDef def;
@@ -87,7 +87,7 @@ void revive(MatchState& s, std::size_t actor, rc::Vec2 where) {
   a.health = s.tuning.health;
   a.respawnTick = -1;
   a.cooldown = 0;
-  a.ammo = kRifle.ammoPerSpawn;
+  arm(a, s.weapons);
   s.minds[actor] = BotMind{};
   s.world->setTransform(a.body, where, 0.0f);
   s.world->setLinearVelocity(a.body, {});

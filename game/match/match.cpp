@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "game/match/actors.h"
+#include "game/weapons/weapon_table.h"
 
 namespace game {
 
@@ -21,6 +22,7 @@ Match::Match(Level level, const MatchConfig& config) {
   s_.level = std::move(level);
   s_.config = config;
   s_.rng = rc::Random(config.seed);
+  s_.weapons = config.weapons ? *config.weapons : loadWeaponTable(bundledWeaponTablePath());
   s_.world = std::make_unique<rc::World>(levelWorldDef(s_.level));
   s_.built = buildLevel(s_.level, *s_.world);
   for (std::size_t i = 0; i < s_.level.objects.size(); ++i) {
@@ -33,6 +35,7 @@ Match::Match(Level level, const MatchConfig& config) {
 void Match::tick(std::span<const PlayerInput> inputs) {
   MatchState& s = s_;
   s.shots.clear();
+  s.explosions.clear();
   decideBots(s, inputs);
   moveActors(s);
   fireWeapons(s);
@@ -61,13 +64,21 @@ std::uint64_t Match::hash() const {
     mix(static_cast<std::uint32_t>(a.kills), 4);
     mix(static_cast<std::uint32_t>(a.deaths), 4);
     mix(static_cast<std::uint32_t>(a.cooldown), 4);
-    mix(static_cast<std::uint32_t>(a.ammo), 4);
+    for (std::size_t w = 0; w < s_.weapons.weapons.size(); ++w)
+      mix(static_cast<std::uint32_t>(a.ammo[w]), 4);
     for (std::uint8_t b : toBytes(a.input))
       mix(b, 1);
   }
   for (const PropState& p : s_.props) {
     mixFloat(p.health);
     mix(p.destroyed, 1);
+  }
+  for (const Grenade& g : s_.grenades) {
+    mix(g.live, 1);
+    mix(g.thrower, 4);
+    mix(g.weapon, 1);
+    mix(static_cast<std::uint32_t>(g.fuse), 4);
+    mix(static_cast<std::uint32_t>(g.bounces), 4);
   }
   return h;
 }

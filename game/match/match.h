@@ -4,13 +4,15 @@
 // The tick reads top to bottom (Quake III's G_RunFrame is the model; Match::tick):
 //   decide      every bot (and every player on autopilot) fills its input from what it perceives
 //   move        actors accelerate towards what their input asks
-//   weapons     shots are ray casts through the world, now, before the bodies move
+//   weapons     grenades whose fuse ran out explode; shots are ray casts through the world,
+//               now, before the bodies move (penetration, ricochets); grenades are thrown
 //   physics     the world steps once (World::step)
-//   rules       the step's events: damage, deaths, triggers; respawns that are due
+//   rules       the step's events: damage, deaths, triggers, grenades' bounces; respawns due
 // Entities refer to bodies by handle and are created and removed between steps only. Randomness
 // comes from the match's own generator, seeded by the config; order is creation order.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -21,6 +23,7 @@
 #include "game/level/level.h"
 #include "game/level/level_builder.h"
 #include "game/match/input.h"
+#include "game/weapons/weapon_table.h"
 #include "physics/random.h"
 #include "physics/world.h"
 
@@ -36,6 +39,10 @@ struct ActorTuning {
   float acceleration = 40.0f;  // m/s^2
   float health = 100.0f;
   float respawnSeconds = 3.0f;
+  // The penetration budget a shot spends crossing an actor (crates: 0.3, from the levels): a
+  // body stops most of a round. The rifle (budget 1) goes through one actor with 40% of its
+  // damage left and is stopped by a second; a shotgun pellet (0.1) is stopped by the first.
+  float thickness = 0.6f;
 };
 
 struct Actor {
@@ -48,9 +55,9 @@ struct Actor {
   float aim = 0.0f;               // radians: where it faces (from its last input)
   std::int64_t respawnTick = -1;  // while dead: the tick it comes back
   int kills = 0, deaths = 0;
-  int cooldown = 0;  // ticks until its weapon can fire again
-  int ammo = 0;
-  PlayerInput input;  // this tick's
+  int cooldown = 0;                     // ticks until it can fire or throw again
+  std::array<int, kMaxWeapons> ammo{};  // per weapon of the table
+  PlayerInput input;                    // this tick's
 };
 
 // A level prop that can be destroyed (its material's health above zero).
@@ -65,8 +72,30 @@ struct PropState {
 // than one when it ricochets or passes through), and who it hit.
 struct Shot {
   std::size_t shooter = 0;
+  std::size_t weapon = 0;      // index in the weapon table
+  int pellet = 0;              // which of the weapon's pellets (a shotgun fires several at once)
   std::vector<rc::Vec2> path;  // from the muzzle through every bounce to where it ended
-  std::vector<std::size_t> actorsHit;
+  std::vector<std::size_t> actorsHit;  // in the order it met them
+};
+
+// A thrown grenade: a dynamic circle body (a bullet for continuous collision) until its fuse runs
+// out. Slots are reused in order once a grenade has exploded (its body user data names the slot).
+struct Grenade {
+  std::size_t thrower = 0;
+  std::size_t weapon = 0;  // its spec in the weapon table
+  rc::BodyId body;
+  int fuse = 0;     // ticks left
+  int bounces = 0;  // contacts it hit faster than the world's hit-event threshold
+  bool live = false;
+};
+
+// An explosion this tick, for the view and the tests.
+struct Explosion {
+  std::size_t thrower = 0;
+  rc::Vec2 center{};
+  float radius = 0.0f;
+  std::vector<std::size_t> actorsHit;  // actors it reached (in line of sight, within the radius)
+  int bodiesPushed = 0;                // dynamic bodies it reached, actors included
 };
 
 // What a bot (or a player on autopilot) keeps between ticks: only what it perceived or chose.
@@ -84,6 +113,8 @@ struct MatchConfig {
   int bots = -1;           // bots to field: -1 every bot spawn of the level; more reuse them
   int players = 1;         // players, driven by the autopilot unless inputs are given
   std::uint64_t seed = 1;  // the match's randomness (aim error, spawn choices)
+  // The weapons; none: the bundled table (bundledWeaponTablePath()), and an error if it is bad.
+  std::optional<WeaponTable> weapons;
 };
 
 // The whole match, open to the phase functions of game/ (each phase is a file of its own).
@@ -91,6 +122,7 @@ struct MatchState {
   Level level;
   MatchConfig config;
   ActorTuning tuning;
+  WeaponTable weapons;
   std::unique_ptr<rc::World> world;
   BuiltLevel built;
   std::vector<Actor> actors;
@@ -98,7 +130,9 @@ struct MatchState {
   std::vector<PropState> props;
   rc::Random rng{1};
   std::int64_t tick = 0;
-  std::vector<Shot> shots;  // this tick's
+  std::vector<Grenade> grenades;
+  std::vector<Shot> shots;            // this tick's
+  std::vector<Explosion> explosions;  // this tick's
 };
 
 // User data of the bodies and shapes a match creates (a level's carry levelUserData): a tag in
@@ -136,7 +170,7 @@ class Match {
 // The phases of the tick, in its order (each in its own file).
 void decideBots(MatchState& s, std::span<const PlayerInput> inputs);  // bots/brain.cpp
 void moveActors(MatchState& s);                                       // match/movement.cpp
-void fireWeapons(MatchState& s);                                      // weapons/weapons.cpp
-void applyRules(MatchState& s);                                       // rules/rules.cpp
+void fireWeapons(MatchState& s);  // weapons/weapons.cpp: fuses, then shots and throws
+void applyRules(MatchState& s);   // rules/rules.cpp
 
 }  // namespace game

@@ -1,9 +1,10 @@
-// The rules phase: what the step's events mean for the match (trigger zones), then the
-// respawns that are due.
+// The rules phase: what the step's events mean for the match (trigger zones, grenades'
+// bounces), then the respawns that are due.
 #include <string>
 
 #include "game/match/actors.h"
 #include "game/rules/damage.h"
+#include "game/weapons/grenade.h"
 
 namespace game {
 namespace {
@@ -27,6 +28,7 @@ void applyRules(MatchState& s) {
     if (trigger == nullptr || !visitor || visitor->kind != GameKind::actor) continue;
     if (trigger->action == "kill") killActor(s, visitor->index, std::nullopt);
   }
+  countGrenadeBounces(s);
   for (std::size_t i = 0; i < s.actors.size(); ++i) {
     const Actor& a = s.actors[i];
     if (!a.alive && a.respawnTick >= 0 && a.respawnTick <= s.tick + 1)

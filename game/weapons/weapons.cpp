@@ -1,60 +1,44 @@
-// The weapons phase: every living actor whose input pulls the trigger fires, if its weapon is
-// ready and loaded. Shots are taken now, against where everything is before the step.
+// The weapons phase: grenades whose fuse has run out explode (against the world as the last step
+// left it), then every living actor whose input pulls the trigger fires the weapon it selected,
+// or throws a grenade, if it is ready and loaded. Shots are taken now, before the step.
 #include "game/weapons/weapons.h"
-
-#include <algorithm>
-
-#include "game/rules/damage.h"
-#include "physics/trig.h"
 
 namespace game {
 
-float damageAt(const WeaponSpec& weapon, float distance) {
-  if (distance <= weapon.falloffStart) return weapon.damage;
-  if (distance >= weapon.falloffEnd) return weapon.minDamage * weapon.damage;
-  const float t = (distance - weapon.falloffStart) / (weapon.falloffEnd - weapon.falloffStart);
-  return weapon.damage * (1.0f - t * (1.0f - weapon.minDamage));
+void arm(Actor& actor, const WeaponTable& table) {
+  actor.ammo.fill(0);
+  for (std::size_t w = 0; w < table.weapons.size(); ++w)
+    actor.ammo[w] = table.weapons[w].ammo;
 }
 
-void fireHitscan(MatchState& s, std::size_t shooter, const WeaponSpec& weapon) {
-  const Actor& a = s.actors[shooter];
-  const rc::SinCos sc = rc::sincos(a.aim);
-  const rc::Vec2 dir{sc.cosine, sc.sine};
-  const rc::Vec2 from = s.world->worldCenter(a.body);
-  Shot shot;
-  shot.shooter = shooter;
-  shot.path.push_back(from);
-  const rc::QueryFilter filter = rc::QueryFilter::ignoring(a.body, {0xFFFFFFFFu, 0xFFFFFFFFu});
-  const std::optional<rc::WorldHit> hit = s.world->castRay(from, weapon.range * dir, filter);
-  if (!hit) {
-    shot.path.push_back(from + weapon.range * dir);
-    s.shots.push_back(std::move(shot));
-    return;
+void fireWeapon(MatchState& s, std::size_t actor, std::size_t weapon) {
+  if (s.weapons.weapons[weapon].kind == WeaponKind::grenade) {
+    throwGrenade(s, actor, weapon);
+  } else {
+    firePellets(s, actor, weapon);
   }
-  shot.path.push_back(hit->point);
-  const float distance = hit->fraction * weapon.range;
-  const float damage = damageAt(weapon, distance);
-  if (const std::optional<GameRef> ref = gameRefOf(hit->bodyUserData);
-      ref && ref->kind == GameKind::actor) {
-    shot.actorsHit.push_back(ref->index);
-    damageActor(s, ref->index, damage, shooter);
-  } else if (const std::optional<LevelRef> level = levelRefOf(hit->bodyUserData)) {
-    damageProp(s, level->index, damage);
-  }
-  if (s.world->isValid(hit->body) && s.world->type(hit->body) == rc::BodyType::dynamicBody &&
-      s.world->isEnabled(hit->body))
-    s.world->applyLinearImpulse(hit->body, weapon.impulse * dir, hit->point);
-  s.shots.push_back(std::move(shot));
 }
 
 void fireWeapons(MatchState& s) {
+  explodeDueGrenades(s);
+  const std::optional<std::size_t> grenade = s.weapons.grenade();
   for (std::size_t i = 0; i < s.actors.size(); ++i) {
     Actor& a = s.actors[i];
     if (a.cooldown > 0) --a.cooldown;
-    if (!a.alive || (a.input.buttons & kButtonFire) == 0 || a.cooldown > 0 || a.ammo <= 0) continue;
-    a.cooldown = kRifle.cooldownTicks;
-    --a.ammo;
-    fireHitscan(s, i, kRifle);
+    if (!a.alive || a.cooldown > 0) continue;
+    // A throw takes precedence over the trigger (it is the rarer, deliberate act); with no
+    // grenade left the trigger still fires.
+    std::optional<std::size_t> weapon;
+    if ((a.input.buttons & kButtonThrow) != 0 && grenade && a.ammo[*grenade] > 0) {
+      weapon = grenade;
+    } else if ((a.input.buttons & kButtonFire) != 0 && a.input.weapon < s.weapons.weapons.size() &&
+               a.ammo[a.input.weapon] > 0) {
+      weapon = a.input.weapon;
+    }
+    if (!weapon) continue;
+    a.cooldown = s.weapons.weapons[*weapon].cooldownTicks;
+    --a.ammo[*weapon];
+    fireWeapon(s, i, *weapon);
   }
 }
 

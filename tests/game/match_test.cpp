@@ -148,15 +148,17 @@ TEST(Bots, ShootOnlyAtWhatTheySee) {
 // A rifle shot loses damage linearly from falloffStart to falloffEnd; the target's health drops
 // by exactly damageAt(distance).
 TEST(Weapons, HitscanDamageFollowsTheFalloff) {
-  const game::WeaponSpec& rifle = game::kRifle;
+  Match probe(room({-1, 0}, {}), config(0));
+  const game::HitscanSpec rifle = probe.state().weapons.weapons[0].hitscan;
   EXPECT_EQ(game::damageAt(rifle, 5), rifle.damage);
   EXPECT_EQ(game::damageAt(rifle, rifle.falloffEnd + 1), rifle.minDamage * rifle.damage);
-  EXPECT_FLOAT_EQ(game::damageAt(rifle, 40), rifle.damage * (1 - 0.5f * (1 - rifle.minDamage)));
+  const float middle = (rifle.falloffStart + rifle.falloffEnd) / 2;
+  EXPECT_FLOAT_EQ(game::damageAt(rifle, middle), rifle.damage * (1 - 0.5f * (1 - rifle.minDamage)));
   for (const float distance : {5.0f, 30.0f}) {
     Match m(room({-distance / 2, 0}, {{distance / 2, 0}}), config(1));
     game::MatchState& s = m.state();
     s.actors[0].aim = 0;  // the player at -x aims at the bot at +x
-    game::fireHitscan(s, 0, rifle);
+    game::firePellets(s, 0, 0);
     ASSERT_EQ(s.shots.size(), 1u);
     ASSERT_EQ(s.shots[0].actorsHit, std::vector<std::size_t>{1});
     // The ray meets the bot's disc at its near side.
@@ -172,7 +174,7 @@ TEST(Rules, DeathAndRespawnAtTheFarthestSpawn) {
   Match m(room({-15, 0}, {{-10, 0}, {15, 15}, {12, -3}}), config(1));
   game::MatchState& s = m.state();
   for (int k = 0; k < 4; ++k)
-    game::damageActor(s, 1, game::kRifle.damage, 0);
+    game::damageActor(s, 1, 25, 0);
   EXPECT_FALSE(s.actors[1].alive);
   EXPECT_EQ(s.actors[1].deaths, 1);
   EXPECT_EQ(s.actors[0].kills, 1);

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <system_error>
+#include <vector>
 
 #include "physics/trig.h"
 
@@ -22,6 +23,10 @@ using Json = nlohmann::json;
 
 // A weapon file is a few kB; anything this large is not one (and must not exhaust memory).
 constexpr std::uintmax_t kMaxFileBytes = 1u << 20;
+// A weapon table nests four levels (the file, its list, a weapon, its falloff); deeper files are
+// refused while parsing, before anything walks the tree (an error message renders a value, and
+// rendering 100,000 nested arrays recurses as deep).
+constexpr int kMaxDepth = 16;
 constexpr float kDegree = rc::kPi / 180.0f;
 
 // Where a value sits: the file, then "weapons[1] ("shotgun")", then the field.
@@ -192,9 +197,28 @@ WeaponTable parseWeaponTable(std::string_view text, const std::string& source) {
   const At at(source);
   if (text.size() > kMaxFileBytes)
     at.fail("the file is larger than " + std::to_string(kMaxFileBytes >> 10) + " KiB");
+  // The parser's callback sees every value as it opens and every key: too deep is refused, and
+  // so is a key twice in one object (nlohmann would keep the last one silently).
+  std::vector<std::vector<std::string>> keys;  // per open object, its keys so far
+  const Json::parser_callback_t guard = [&](int depth, Json::parse_event_t event, Json& value) {
+    if (event == Json::parse_event_t::object_start || event == Json::parse_event_t::array_start) {
+      if (depth >= kMaxDepth)
+        at.fail("not a weapon table: JSON nested deeper than " + std::to_string(kMaxDepth) +
+                " levels");
+      if (event == Json::parse_event_t::object_start) keys.emplace_back();
+    } else if (event == Json::parse_event_t::object_end) {
+      if (!keys.empty()) keys.pop_back();
+    } else if (event == Json::parse_event_t::key && !keys.empty()) {
+      const std::string key = value.get<std::string>();
+      for (const std::string& k : keys.back())
+        if (k == key) at.fail("the key " + describe(value) + " appears twice in one object");
+      keys.back().push_back(key);
+    }
+    return true;
+  };
   Json root;
   try {
-    root = Json::parse(text.begin(), text.end());
+    root = Json::parse(text.begin(), text.end(), guard);
   } catch (const Json::exception& e) {
     // nlohmann's "[json.exception.parse_error.101] parse error at line L, column C: what".
     const std::string what = e.what();

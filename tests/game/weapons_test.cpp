@@ -620,6 +620,17 @@ TEST(WeaponTable, BundledAndBadFiles) {
   EXPECT_EQ(error(R"({"weapons": [)" + rifleText + "," + rifleText + "]}"),
             "w.json: weapons[1] (\"rifle\"): 'name' \"rifle\" is taken");
   EXPECT_EQ(error(R"({"weapons": [1]})"), "w.json: weapons[0]: must be an object, got 1");
+  // Hostile files: nesting (100,000 levels once crashed a reader rendering the value), a key
+  // twice, names with control characters (escaped, cut: the message stays one line).
+  EXPECT_EQ(error(std::string(100000, '[') + std::string(100000, ']')),
+            "w.json: not a weapon table: JSON nested deeper than 16 levels");
+  EXPECT_EQ(with(R"("ammo": 90,)", R"("ammo": 90, "ammo": 9,)"),
+            "w.json: the key \"ammo\" appears twice in one object");
+  const std::string named =
+      with(R"("name": "rifle")", "\"name\": \"a\\nb\\u001b[31m" + std::string(60, 'x') + "\"");
+  EXPECT_EQ(named.find('\n'), std::string::npos);
+  EXPECT_EQ(named.find('\x1b'), std::string::npos);
+  EXPECT_LT(named.size(), 160u) << named;
   try {
     game::loadWeaponTable("/no/such/weapons.json");
     ADD_FAILURE();

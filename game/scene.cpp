@@ -2,10 +2,13 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <system_error>
+#include <vector>
 
 #include "physics/integrate.h"
 
@@ -25,9 +28,32 @@ struct Where {
   }
 };
 
+// At most 40 characters of a value, for messages (invalid UTF-8 replaced, not thrown).
 std::string describe(const json& j) {
-  std::string s = j.dump();
+  std::string s = j.dump(-1, ' ', false, json::error_handler_t::replace);
   return s.size() > 40 ? s.substr(0, 37) + "..." : s;
+}
+
+// A name from the file as a message shows it: quoted, control characters (a newline, an ANSI
+// escape) written as \uXXXX so that a message stays one line and cannot drive the terminal,
+// and cut at 40 characters.
+std::string shownName(const std::string& name) {
+  std::string out = "\"";
+  for (const char c : name) {
+    if (out.size() > 41) {
+      out += "...";
+      break;
+    }
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7F || c == '"' || c == '\\') {
+      char code[8];
+      std::snprintf(code, sizeof code, "\\u%04x", static_cast<unsigned>(u));
+      out += code;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
 }
 
 void onlyKnown(const json& obj, std::initializer_list<const char*> keys, const Where& at,
@@ -55,7 +81,7 @@ float number(const json& obj, const char* key, float fallback, const Where& at,
   if (!v->is_number()) at.fail(prefix + key, "must be a number, got " + describe(*v));
   const double d = v->get<double>();
   if (!std::isfinite(d) || std::fabs(d) > 3.0e38)
-    at.fail(prefix + key, "must be a finite number, got " + describe(*v));
+    at.fail(prefix + key, "is beyond the float range (3.4e38), got " + describe(*v));
   return static_cast<float>(d);
 }
 
@@ -64,7 +90,7 @@ rc::Vec2 vec2(const json& v, const Where& at, const std::string& field) {
     at.fail(field, "must be [x, y], got " + describe(v));
   const double x = v[0].get<double>(), y = v[1].get<double>();
   if (!std::isfinite(x) || !std::isfinite(y) || std::fabs(x) > 3.0e38 || std::fabs(y) > 3.0e38)
-    at.fail(field, "must be finite, got " + describe(v));
+    at.fail(field, "is beyond the float range (3.4e38), got " + describe(v));
   return {static_cast<float>(x), static_cast<float>(y)};
 }
 
@@ -232,8 +258,8 @@ BodyDesc parseBody(const json& j, std::size_t index, const std::string& file) {
   if (j.is_object())
     if (const json* n = find(j, "name"); n != nullptr && n->is_string())
       name = n->get<std::string>();
-  const Where at{file,
-                 "body " + std::to_string(index) + (name.empty() ? "" : " (\"" + name + "\")")};
+  const Where at{
+      file, "body " + std::to_string(index) + (name.empty() ? "" : " (" + shownName(name) + ")")};
   if (!j.is_object()) at.fail("", "must be an object");
   onlyKnown(
       j,
@@ -268,9 +294,34 @@ BodyDesc parseBody(const json& j, std::size_t index, const std::string& file) {
 }  // namespace
 
 SceneDesc parseScene(std::string_view text, const std::string& name) {
+  if (text.size() > kMaxSceneBytes)
+    throw SceneError(name + ": the file is larger than " + std::to_string(kMaxSceneBytes >> 20) +
+                     " MiB");
+  // The parser's callback sees every value as it opens and every key: refusing depth here
+  // bounds the parser's stack and every later walk of the tree (an error message renders the
+  // offending value); a key seen twice in one object is refused rather than silently taking
+  // the last one.
+  std::vector<std::vector<std::string>> keys;  // per open object, its keys so far
+  const json::parser_callback_t guard = [&](int depth, json::parse_event_t event, json& value) {
+    if (event == json::parse_event_t::object_start || event == json::parse_event_t::array_start) {
+      if (depth >= kMaxSceneDepth)
+        throw SceneError(name + ": not a scene: JSON nested deeper than " +
+                         std::to_string(kMaxSceneDepth) + " levels");
+      if (event == json::parse_event_t::object_start) keys.emplace_back();
+    } else if (event == json::parse_event_t::object_end) {
+      keys.pop_back();
+    } else if (event == json::parse_event_t::key && !keys.empty()) {
+      const std::string key = value.get<std::string>();
+      for (const std::string& k : keys.back())
+        if (k == key)
+          throw SceneError(name + ": the key " + shownName(key) + " appears twice in one object");
+      keys.back().push_back(key);
+    }
+    return true;
+  };
   json root;
   try {
-    root = json::parse(text.begin(), text.end());
+    root = json::parse(text.begin(), text.end(), guard);
   } catch (const json::exception& e) {
     // nlohmann's messages: "[json.exception.parse_error.101] parse error at line L, column
     // C: what", or "[json.exception.out_of_range.406] number overflow parsing '1e999'". Keep
@@ -296,6 +347,17 @@ SceneDesc parseScene(std::string_view text, const std::string& name) {
 }
 
 SceneDesc loadScene(const std::string& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status))
+    throw SceneError(path + ": cannot open the file: it does not exist");
+  if (std::filesystem::is_directory(status))
+    throw SceneError(path + ": cannot open the file: it is a directory");
+  // Refused before reading: the parsed tree takes about ten times the file.
+  if (const std::uintmax_t size = std::filesystem::file_size(path, ec);
+      !ec && size > kMaxSceneBytes)
+    throw SceneError(path + ": the file is larger than " + std::to_string(kMaxSceneBytes >> 20) +
+                     " MiB");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path + ": cannot open the file");
   std::ostringstream text;
@@ -319,7 +381,7 @@ BuiltWorld buildWorld(const SceneDesc& scene) {
       std::string what = e.what();
       if (what.rfind("body: ", 0) == 0) what = what.substr(6);
       throw SceneError(scene.source + ": body " + std::to_string(i) +
-                       (b.name.empty() ? "" : " (\"" + b.name + "\")") + ": " + what);
+                       (b.name.empty() ? "" : " (" + shownName(b.name) + ")") + ": " + what);
     }
   }
   return built;

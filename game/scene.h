@@ -43,6 +43,11 @@ struct SceneDesc {
 };
 
 // Reads and validates a scene; throws SceneError.
+// Scene files larger than this are refused before they are read (the parsed tree takes about
+// ten times the file); deeper nesting is refused while parsing (a scene needs five levels).
+inline constexpr std::uintmax_t kMaxSceneBytes = std::uintmax_t{32} << 20;
+inline constexpr int kMaxSceneDepth = 32;
+
 SceneDesc loadScene(const std::string& path);
 // The same from text; `name` stands for the file in messages.
 SceneDesc parseScene(std::string_view text, const std::string& name);

@@ -220,7 +220,10 @@ void WorldState::prepareBounceGroups() {
   }
   // Per constraint: -2 if lone (or moving nothing), else -1, then its root slot, then its
   // group.
+  // The constraints that are not lone, listed once: the passes below walk only them (in a
+  // sparse scene most contacts are lone pairs).
   constraintGroup_.resize(constraintBodies_.size());
+  grouped_.clear();
   for (std::size_t i = 0; i < constraintBodies_.size(); ++i) {
     const ConstraintBodies& cb = constraintBodies_[i];
     auto single = [&](std::int32_t slot) {
@@ -229,6 +232,7 @@ void WorldState::prepareBounceGroups() {
     const bool moves = movingA(cb) >= 0 || movingB(cb) >= 0;
     const bool lone = cb.pointCount == 1 && single(movingA(cb)) && single(movingB(cb));
     constraintGroup_[i] = moves && !lone ? -1 : -2;
+    if (moves && !lone) grouped_.push_back(static_cast<std::int32_t>(i));
   }
   bool any = false;
   for (const std::int32_t i : bouncyIndex_)
@@ -236,9 +240,9 @@ void WorldState::prepareBounceGroups() {
   if (!any) return;
   // Union-find over the slots of the constraints that are not lone (only those are read).
   slotParent_.resize(static_cast<std::size_t>(awakeCount_));
-  for (std::size_t i = 0; i < constraintBodies_.size(); ++i) {
-    if (constraintGroup_[i] == -2) continue;
-    for (const std::int32_t slot : {movingA(constraintBodies_[i]), movingB(constraintBodies_[i])})
+  for (const std::int32_t i : grouped_) {
+    const ConstraintBodies& cb = constraintBodies_[static_cast<std::size_t>(i)];
+    for (const std::int32_t slot : {movingA(cb), movingB(cb)})
       if (slot >= 0) slotParent_[static_cast<std::size_t>(slot)] = slot;
   }
   auto root = [&](std::int32_t x) {
@@ -249,17 +253,16 @@ void WorldState::prepareBounceGroups() {
     }
     return x;
   };
-  for (std::size_t i = 0; i < constraintBodies_.size(); ++i) {
-    const ConstraintBodies& cb = constraintBodies_[i];
-    if (constraintGroup_[i] == -1 && movingA(cb) >= 0 && movingB(cb) >= 0)
+  for (const std::int32_t i : grouped_) {
+    const ConstraintBodies& cb = constraintBodies_[static_cast<std::size_t>(i)];
+    if (movingA(cb) >= 0 && movingB(cb) >= 0)
       slotParent_[static_cast<std::size_t>(root(cb.slotA))] = root(cb.slotB);
   }
   rootGroup_.resize(static_cast<std::size_t>(awakeCount_));
-  for (std::size_t i = 0; i < constraintBodies_.size(); ++i) {
-    if (constraintGroup_[i] == -2) continue;
-    const ConstraintBodies& cb = constraintBodies_[i];
+  for (const std::int32_t i : grouped_) {
+    const ConstraintBodies& cb = constraintBodies_[static_cast<std::size_t>(i)];
     const std::int32_t r = root(movingA(cb) >= 0 ? movingA(cb) : movingB(cb));
-    constraintGroup_[i] = r;
+    constraintGroup_[static_cast<std::size_t>(i)] = r;
     rootGroup_[static_cast<std::size_t>(r)] = -1;
   }
   for (std::size_t j = 0; j < bouncy_.size(); ++j) {
@@ -275,19 +278,20 @@ void WorldState::prepareBounceGroups() {
   }
   // Each constraint's group (-1: none), which groups are driven, the tracked bodies (each
   // once: marked in slotParent_, done with as a union-find).
-  for (std::size_t i = 0; i < constraintBodies_.size(); ++i) {
-    const std::int32_t r = constraintGroup_[i];
-    const std::int32_t group = r >= 0 ? rootGroup_[static_cast<std::size_t>(r)] : -1;
-    constraintGroup_[i] = group;
+  for (const std::int32_t i : grouped_) {
+    const std::int32_t r = constraintGroup_[static_cast<std::size_t>(i)];
+    const std::int32_t group = rootGroup_[static_cast<std::size_t>(r)];
+    constraintGroup_[static_cast<std::size_t>(i)] = group;
     if (group < 0) continue;
-    const ConstraintBodies& cb = constraintBodies_[i];
+    const ConstraintBodies& cb = constraintBodies_[static_cast<std::size_t>(i)];
     BounceGroup& g = bounceGroups_[static_cast<std::size_t>(group)];
     g.driven = g.driven || (cb.slotA >= 0 && !cb.movesA) || (cb.slotB >= 0 && !cb.movesB);
   }
-  for (std::size_t i = 0; i < constraintBodies_.size(); ++i) {
-    const std::int32_t group = constraintGroup_[i];
+  for (const std::int32_t i : grouped_) {
+    const std::int32_t group = constraintGroup_[static_cast<std::size_t>(i)];
     if (group < 0) continue;
-    for (const std::int32_t slot : {movingA(constraintBodies_[i]), movingB(constraintBodies_[i])}) {
+    const ConstraintBodies& cb = constraintBodies_[static_cast<std::size_t>(i)];
+    for (const std::int32_t slot : {movingA(cb), movingB(cb)}) {
       if (slot < 0 || slotParent_[static_cast<std::size_t>(slot)] < 0) continue;
       slotParent_[static_cast<std::size_t>(slot)] = -1;
       const Body& b = bodies_[static_cast<std::size_t>(slotBody_[static_cast<std::size_t>(slot)])];

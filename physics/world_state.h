@@ -330,6 +330,7 @@ class WorldState {
   std::vector<TrackedBody> tracked_;
   std::vector<float> beforeBounce_;
   std::vector<std::int32_t> constraintGroup_;
+  std::vector<std::int32_t> grouped_;                 // the constraints that are not lone
   std::vector<std::int32_t> slotParent_, rootGroup_;  // per awake slot, while grouping
   std::vector<std::uint8_t> slotDegree_;
   ContactSolver contactSolver_;

@@ -187,3 +187,50 @@ TEST(Scene, OutputsAreWrittenWhole) {
 }
 
 }  // namespace
+
+namespace {
+
+// Hostile scene files (issue 24): each gets one line naming the file and what is wrong, in
+// bounded time and memory, never a crash.
+TEST(Scene, HostileInputGetsOneLine) {
+  // 100,000 levels of nesting crashed the error path (a recursive dump) with SIGSEGV.
+  const std::string deep =
+      R"({"bodies": [{"position": )" + std::string(100000, '[') + std::string(100000, ']') + "}]}";
+  EXPECT_EQ(errorOf(deep), "s.json: not a scene: JSON nested deeper than 32 levels");
+  // A key twice in one object was silently last-wins.
+  EXPECT_EQ(errorOf(R"({"bodies": [], "bodies": []})"),
+            "s.json: the key \"bodies\" appears twice in one object");
+  EXPECT_EQ(errorOf(R"({"bodies": [{"type": "dynamic", "angle": 1, "angle": 2}]})"),
+            "s.json: the key \"angle\" appears twice in one object");
+  // 1e308 is finite: it is beyond float range, and the message says so.
+  EXPECT_EQ(errorOf(R"({"bodies": [{"type": "dynamic", "angle": 1e308}]})"),
+            "s.json: body 0, angle: is beyond the float range (3.4e38), got 1e+308");
+  // A name with a newline and an ANSI escape stays on one line, quoted and escaped; a long one
+  // is cut.
+  const std::string message = errorOf("{\"bodies\": [{\"name\": \"a\\nb\\u001b[31m" +
+                                      std::string(1000000, 'x') + "\", \"type\": \"wobbly\"}]}");
+  EXPECT_EQ(message.find('\n'), std::string::npos);
+  EXPECT_EQ(message.find('\x1b'), std::string::npos);
+  EXPECT_LT(message.size(), 200u) << message;
+  EXPECT_EQ(message.rfind("s.json: body 0 (\"a\\u000ab\\u001b[31mxxx", 0), 0u) << message;
+  // Larger than the limit: refused before parsing.
+  EXPECT_EQ(errorOf(std::string(game::kMaxSceneBytes + 1, ' ')),
+            "s.json: the file is larger than 32 MiB");
+}
+
+TEST(Scene, MissingFileAndDirectoryAreNamed) {
+  auto loadError = [](const std::string& path) {
+    try {
+      game::loadScene(path);
+    } catch (const game::SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::filesystem::path dir = std::filesystem::temp_directory_path();
+  EXPECT_EQ(loadError(dir.string()), dir.string() + ": cannot open the file: it is a directory");
+  EXPECT_EQ(loadError((dir / "no_such_scene.json").string()),
+            (dir / "no_such_scene.json").string() + ": cannot open the file: it does not exist");
+}
+
+}  // namespace

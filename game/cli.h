@@ -19,4 +19,11 @@ int runLevel(std::span<const std::string_view> args);
 // `ricochet play LEVEL.tmj [--bots K] [--seed S] [--ticks N] [--json]`: a headless match.
 int runPlay(std::span<const std::string_view> args);
 
+// `ricochet replay FILE [--verify] ...` and `ricochet replay --batch ...`: recorded sessions
+// played back (game/commands/replay.cpp).
+int runReplay(std::span<const std::string_view> args);
+
+// `ricochet info FILE [--json]`: what a recording holds and whether it is whole.
+int runInfo(std::span<const std::string_view> args);
+
 }  // namespace game

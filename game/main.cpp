@@ -13,7 +13,9 @@ constexpr const char* kUsage =
     "  demo      run the geometry demo and print results beside hand-worked values\n"
     "  sim       step a scene file and write the final state (and a trajectory)\n"
     "  level     read a Tiled level, build its world and say what it holds\n"
-    "  play      play a headless match on a level, bots against the autopilot\n"
+    "  play      play a headless match on a level, bots against the autopilot (--record)\n"
+    "  replay    play a recorded session back, verify it, or verify many (--batch)\n"
+    "  info      say what a recording holds and whether it is whole\n"
     "\n"
     "ricochet <command> --help shows a command's options.\n";
 
@@ -35,6 +37,8 @@ int main(int argc, char** argv) {
   if (command == "sim") return game::runSim(rest);
   if (command == "level") return game::runLevel(rest);
   if (command == "play") return game::runPlay(rest);
+  if (command == "replay") return game::runReplay(rest);
+  if (command == "info") return game::runInfo(rest);
   std::fprintf(stderr, "ricochet: unknown command '%.*s' (try ricochet --help)\n",
                static_cast<int>(command.size()), command.data());
   return 2;

@@ -105,11 +105,11 @@ void decideBots(MatchState& s, std::span<const PlayerInput> inputs) {
   std::size_t player = 0;
   for (std::size_t i = 0; i < s.actors.size(); ++i) {
     Actor& a = s.actors[i];
-    if (a.kind == ActorKind::player && player++ < inputs.size()) {
-      a.input = inputs[player - 1];
-      continue;
-    }
     a.input = a.alive ? decide(s, i) : PlayerInput{};
+    // A player's given input replaces the autopilot's choice, which is made all the same: the
+    // match draws the same randomness whether the input came from the autopilot, a script or a
+    // recording of either, so a recording replays exactly.
+    if (a.kind == ActorKind::player && player++ < inputs.size()) a.input = inputs[player - 1];
   }
 }
 

@@ -7,13 +7,16 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "game/cli.h"
+#include "game/commands/command_line.h"
 #include "game/level/level_error.h"
 #include "game/level/level_loader.h"
 #include "game/match/match.h"
+#include "game/session/recording.h"
 #include "game/weapons/weapon_table.h"
 
 namespace game {
@@ -40,22 +43,15 @@ int runPlay(std::span<const std::string_view> args) {
       ->check(CLI::Range(0LL, 1LL << 31));
   app.add_option("--weapons", weaponsPath, "the weapon table (default: the bundled one)");
   app.add_flag("--json", json, "the summary as a JSON object");
-  std::vector<std::string> argv{"ricochet play"};
-  for (std::string_view a : args)
-    argv.emplace_back(a);
-  std::vector<const char*> raw;
-  for (const std::string& a : argv)
-    raw.push_back(a.c_str());
-  try {
-    app.parse(static_cast<int>(raw.size()), raw.data());
-  } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) {
-      std::fputs(app.help().c_str(), stdout);
-      return 0;
-    }
-    std::fprintf(stderr, "ricochet play: %s (try ricochet play --help)\n", e.what());
-    return 2;
-  }
+  std::string recordPath;
+  int keyframeEvery = 300;
+  app.add_option("--record", recordPath,
+                 "record the match into FILE (written as it plays: a killed run leaves a file "
+                 "that replays up to its last second)");
+  app.add_option("--keyframe-every", keyframeEvery,
+                 "with --record: ticks between keyframes (default 300, 5 s)")
+      ->check(CLI::Range(1, 1 << 20));
+  if (const std::optional<int> exit = parseCommandLine(app, "ricochet play", args)) return *exit;
 
   try {
     MatchConfig config;
@@ -64,10 +60,23 @@ int runPlay(std::span<const std::string_view> args) {
     config.seed = seed;
     config.weapons = loadWeaponTable(weaponsPath);
     Match match(loadLevel(levelPath), config);
+    std::optional<Recorder> recorder;
+    if (!recordPath.empty()) {
+      for (const std::string& input : {levelPath, weaponsPath})
+        if (sameFile(recordPath, input)) {
+          std::fprintf(stderr, "ricochet play: --record %s: that is an input of the run (%s)\n",
+                       recordPath.c_str(), input.c_str());
+          return kExitUsage;
+        }
+      RecordingHeader header = headerFor(match, levelPath, recordPath);
+      header.keyframeEvery = keyframeEvery;
+      recorder.emplace(recordPath, header);
+    }
     const auto start = std::chrono::steady_clock::now();
     std::size_t shots = 0, explosions = 0;
     for (long long t = 0; t < ticks; ++t) {
       match.tick();
+      if (recorder) recorder->afterTick(match);
       // Trigger pulls: a shotgun's pellets count once.
       for (const Shot& shot : match.state().shots)
         shots += shot.pellet == 0;
@@ -75,6 +84,7 @@ int runPlay(std::span<const std::string_view> args) {
       if (ticks >= 60000 && t % 60000 == 0 && t > 0)
         std::fprintf(stderr, "ricochet play: tick %lld of %lld\n", t, ticks);
     }
+    if (recorder) recorder->finish(match);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     int kills = 0, deaths = 0;
@@ -96,6 +106,9 @@ int runPlay(std::span<const std::string_view> args) {
           ticks, match.state().actors.size(), kills, deaths, shots, explosions, hash, rate);
     }
     return 0;
+  } catch (const RecordingError& e) {
+    std::fprintf(stderr, "ricochet play: %s\n", e.what());
+    return 1;
   } catch (const WeaponTableError& e) {
     std::fprintf(stderr, "ricochet play: %s\n", e.what());
     return 1;

@@ -1,9 +1,9 @@
 #include "game/match/match.h"
 
-#include <bit>
 #include <stdexcept>
 #include <utility>
 
+#include "game/level/level_hash.h"
 #include "game/match/actors.h"
 #include "game/weapons/weapon_table.h"
 
@@ -25,6 +25,7 @@ Match::Match(Level level, const MatchConfig& config) {
   s_.weapons = config.weapons ? *config.weapons : loadWeaponTable(bundledWeaponTablePath());
   s_.world = std::make_unique<rc::World>(levelWorldDef(s_.level));
   s_.built = buildLevel(s_.level, *s_.world);
+  s_.levelHash = levelContentHash(s_.level, s_.world->stateHash());
   for (std::size_t i = 0; i < s_.level.objects.size(); ++i) {
     const LevelObject& o = s_.level.objects[i];
     if (o.material.health > 0.0f) s_.props.push_back({i, s_.built.bodies[i], o.material.health});
@@ -42,45 +43,7 @@ void Match::tick(std::span<const PlayerInput> inputs) {
   s.world->step(kTickSeconds);
   applyRules(s);
   ++s.tick;
-}
-
-std::uint64_t Match::hash() const {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  auto mix = [&](std::uint64_t bits, int bytes) {
-    for (int k = 0; k < bytes; ++k) {
-      h ^= (bits >> (8 * k)) & 0xFFu;
-      h *= 0x100000001b3ull;
-    }
-  };
-  auto mixFloat = [&](float f) { mix(std::bit_cast<std::uint32_t>(f), 4); };
-  mix(s_.world->stateHash(), 8);
-  mix(static_cast<std::uint64_t>(s_.tick), 8);
-  mix(s_.rng.state(), 8);
-  for (const Actor& a : s_.actors) {
-    mix(a.alive, 1);
-    mixFloat(a.health);
-    mixFloat(a.aim);
-    mix(static_cast<std::uint64_t>(a.respawnTick), 8);
-    mix(static_cast<std::uint32_t>(a.kills), 4);
-    mix(static_cast<std::uint32_t>(a.deaths), 4);
-    mix(static_cast<std::uint32_t>(a.cooldown), 4);
-    for (std::size_t w = 0; w < s_.weapons.weapons.size(); ++w)
-      mix(static_cast<std::uint32_t>(a.ammo[w]), 4);
-    for (std::uint8_t b : toBytes(a.input))
-      mix(b, 1);
-  }
-  for (const PropState& p : s_.props) {
-    mixFloat(p.health);
-    mix(p.destroyed, 1);
-  }
-  for (const Grenade& g : s_.grenades) {
-    mix(g.live, 1);
-    mix(g.thrower, 4);
-    mix(g.weapon, 1);
-    mix(static_cast<std::uint32_t>(g.fuse), 4);
-    mix(static_cast<std::uint32_t>(g.bounces), 4);
-  }
-  return h;
+  if (s.config.testHook) s.config.testHook(s);
 }
 
 }  // namespace game

@@ -14,6 +14,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -109,18 +110,24 @@ struct BotMind {
   int stuckTicks = 0;          // ticks it has wanted to move and barely moved
 };
 
+struct MatchState;
+
 struct MatchConfig {
   int bots = -1;           // bots to field: -1 every bot spawn of the level; more reuse them
   int players = 1;         // players, driven by the autopilot unless inputs are given
   std::uint64_t seed = 1;  // the match's randomness (aim error, spawn choices)
   // The weapons; none: the bundled table (bundledWeaponTablePath()), and an error if it is bad.
   std::optional<WeaponTable> weapons;
+  // Called at the end of every tick, for tests only: state kept here is hidden from snapshots
+  // and hashes, which is what `replay --synctest` exists to catch.
+  std::function<void(MatchState&)> testHook;
 };
 
 // The whole match, open to the phase functions of game/ (each phase is a file of its own).
 struct MatchState {
   Level level;
   MatchConfig config;
+  std::uint64_t levelHash = 0;  // levelContentHash of the level (what a recording checks)
   ActorTuning tuning;
   WeaponTable weapons;
   std::unique_ptr<rc::World> world;
@@ -159,8 +166,8 @@ class Match {
 
   const MatchState& state() const { return s_; }
   MatchState& state() { return s_; }
-  // FNV-1a over the world's state hash and the match's own state (actors, props, the
-  // generator, the tick), in creation order: equal hashes, equal futures.
+  // FNV-1a over the match's snapshot (match_snapshot.h: the world's and the match's own state,
+  // in creation order): equal hashes, equal futures.
   std::uint64_t hash() const;
 
  private:

@@ -132,7 +132,7 @@ RecordingContents readRecording(std::span<const std::uint8_t> bytes, const std::
   return out;
 }
 
-RecordingContents readRecording(const std::string& path) {
+std::vector<std::uint8_t> readRecordingBytes(const std::string& path) {
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
   if (ec || !std::filesystem::exists(status))
@@ -145,10 +145,14 @@ RecordingContents readRecording(const std::string& path) {
                          std::to_string(kMaxRecordingBytes >> 30) + " GiB");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw RecordingError(path + ": cannot open the file");
-  const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),
-                                        std::istreambuf_iterator<char>());
+  std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),
+                                  std::istreambuf_iterator<char>());
   if (in.bad()) throw RecordingError(path + ": cannot read the file");
-  return readRecording(bytes, path);
+  return bytes;
+}
+
+RecordingContents readRecording(const std::string& path) {
+  return readRecording(readRecordingBytes(path), path);
 }
 
 }  // namespace game

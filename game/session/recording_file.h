@@ -84,6 +84,8 @@ struct RecordingContents {
 // throws RecordingError (one line naming the file); a damaged one returns what is good and says
 // where the damage is.
 RecordingContents readRecording(const std::string& path);
+// The file's bytes, refused as readRecording(path) refuses: missing, a directory, over 1 GiB.
+std::vector<std::uint8_t> readRecordingBytes(const std::string& path);
 RecordingContents readRecording(std::span<const std::uint8_t> bytes, const std::string& name);
 
 // zlib's CRC-32 of the bytes, continuing from crc (0 to start).

@@ -233,6 +233,7 @@ WeaponTable parseWeaponTable(std::string_view text, const std::string& source) {
             describe(list));
   WeaponTable table;
   table.source = source;
+  table.text = std::string(text);
   for (std::size_t i = 0; i < list.size(); ++i) {
     std::string where = "weapons[" + std::to_string(i) + "]";
     if (list[i].is_object() && list[i].contains("name") && list[i].at("name").is_string())

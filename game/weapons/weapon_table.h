@@ -73,6 +73,7 @@ struct WeaponSpec {
 
 struct WeaponTable {
   std::string source;  // the file it was read from
+  std::string text;    // what the file said (a recording carries it: weapons.json may change)
   std::vector<WeaponSpec> weapons;
   // The weapon thrown by kButtonThrow: the table's first grenade, if it has one.
   std::optional<std::size_t> grenade() const;

@@ -1,0 +1,317 @@
+#include "game/match/match_snapshot.h"
+
+#include <bit>
+#include <cstdio>
+#include <string>
+#include <type_traits>
+#include <utility>
+
+#include "physics/bytes.h"
+
+namespace game {
+namespace {
+
+constexpr std::uint32_t kMagic = 0x534D4352;  // "RCMS"
+constexpr std::uint32_t kFormat = 1;
+
+// Every field once, for both directions (as physics/snapshot.cpp does): io() writes through Out
+// and reads through In, so the two cannot disagree on what is in a snapshot or in what order.
+class Out {
+ public:
+  static constexpr bool reading = false;
+  explicit Out(rc::ByteWriter& w) : w_(w) {}
+  void operator()(const bool& v) { w_.boolean(v); }
+  void operator()(const std::uint8_t& v) { w_.u8(v); }
+  void operator()(const std::int8_t& v) { w_.u8(static_cast<std::uint8_t>(v)); }
+  void operator()(const std::uint16_t& v) { w_.u16(v); }
+  void operator()(const int& v) { w_.i32(v); }
+  void operator()(const std::uint32_t& v) { w_.u32(v); }
+  void operator()(const std::int64_t& v) { w_.u64(static_cast<std::uint64_t>(v)); }
+  void operator()(const std::uint64_t& v) { w_.u64(v); }
+  void operator()(const float& v) { w_.f32(v); }
+  void operator()(const rc::Vec2& v) {
+    w_.f32(v.x);
+    w_.f32(v.y);
+  }
+  // An index into a list of `size` items.
+  void index(const std::size_t& v, std::size_t) { w_.u32(static_cast<std::uint32_t>(v)); }
+  std::size_t count(std::size_t n, std::size_t) {
+    w_.count(n);
+    return n;
+  }
+
+ private:
+  rc::ByteWriter& w_;
+};
+
+class In {
+ public:
+  static constexpr bool reading = true;
+  explicit In(rc::ByteReader& r) : r_(r) {}
+  void operator()(bool& v) { v = r_.boolean(); }
+  void operator()(std::uint8_t& v) { v = r_.u8(); }
+  void operator()(std::int8_t& v) { v = static_cast<std::int8_t>(r_.u8()); }
+  void operator()(std::uint16_t& v) { v = r_.u16(); }
+  void operator()(int& v) { v = r_.i32(); }
+  void operator()(std::uint32_t& v) { v = r_.u32(); }
+  void operator()(std::int64_t& v) { v = static_cast<std::int64_t>(r_.u64()); }
+  void operator()(std::uint64_t& v) { v = r_.u64(); }
+  void operator()(float& v) { v = r_.f32(); }
+  void operator()(rc::Vec2& v) {
+    v.x = r_.f32();
+    v.y = r_.f32();
+  }
+  void index(std::size_t& v, std::size_t size) {
+    const std::uint32_t i = r_.u32();
+    if (i >= size) fail("an index is " + std::to_string(i) + " of " + std::to_string(size));
+    v = i;
+  }
+  std::size_t count(std::size_t, std::size_t minBytes) { return r_.count(minBytes); }
+  [[noreturn]] void fail(const std::string& why) const { r_.fail(why); }
+
+ private:
+  rc::ByteReader& r_;
+};
+
+// A count that must equal what the match was made with (actors, props: fixed by the level and
+// the configuration).
+template <class A>
+void fixedCount(A& a, std::size_t n, const char* what) {
+  const std::size_t read = a.count(n, 0);
+  if constexpr (A::reading)
+    if (read != n)
+      a.fail(std::string("the snapshot has ") + std::to_string(read) + " " + what +
+             ", this match " + std::to_string(n));
+}
+
+template <class A>
+void ioBody(A& a, auto& id) {
+  a(id.index);
+  a(id.generation);
+}
+
+template <class A>
+void ioInput(A& a, auto& in) {
+  a(in.moveX);
+  a(in.moveY);
+  a(in.aim);
+  a(in.buttons);
+  a(in.weapon);
+}
+
+template <class A, class S>
+void io(A& a, S& s, std::size_t weapons) {
+  a(s.tick);
+  if constexpr (A::reading) {
+    std::uint64_t state = 0;
+    a(state);
+    s.rng = rc::Random(state);
+  } else {
+    const std::uint64_t state = s.rng.state();
+    a(state);
+  }
+  fixedCount(a, s.actors.size(), "actors");
+  for (auto& actor : s.actors) {
+    a(actor.alive);
+    a(actor.health);
+    a(actor.aim);
+    a(actor.respawnTick);
+    a(actor.kills);
+    a(actor.deaths);
+    a(actor.cooldown);
+    for (std::size_t w = 0; w < weapons; ++w)
+      a(actor.ammo[w]);
+    ioInput(a, actor.input);
+  }
+  for (auto& mind : s.minds) {
+    bool hasTarget = mind.target.has_value();
+    a(hasTarget);
+    if (hasTarget) {
+      std::size_t target = mind.target.value_or(0);
+      a.index(target, s.actors.size());
+      if constexpr (A::reading) mind.target = target;
+    } else if constexpr (A::reading) {
+      mind.target.reset();
+    }
+    a(mind.lastSeen);
+    a(mind.lastSeenTick);
+    a(mind.goal);
+    a(mind.goalTick);
+    a(mind.strafe);
+    a(mind.stuckTicks);
+  }
+  fixedCount(a, s.props.size(), "props");
+  for (auto& prop : s.props) {
+    a(prop.health);
+    a(prop.destroyed);
+  }
+  const std::size_t grenades = a.count(s.grenades.size(), 30);
+  if constexpr (A::reading) s.grenades.resize(grenades);
+  for (auto& g : s.grenades) {
+    a.index(g.thrower, s.actors.size());
+    a.index(g.weapon, weapons);
+    ioBody(a, g.body);
+    a(g.fuse);
+    a(g.bounces);
+    a(g.live);
+  }
+}
+
+}  // namespace
+
+std::uint64_t fnv1a(std::span<const std::uint8_t> bytes, std::uint64_t h) {
+  for (std::uint8_t b : bytes) {
+    h ^= b;
+    h *= 0x100000001b3ull;
+  }
+  return h;
+}
+
+MatchSnapshot saveMatch(const MatchState& s) {
+  MatchSnapshot out;
+  rc::ByteWriter w(out);
+  w.u32(kMagic);
+  w.u32(kFormat);
+  Out a(w);
+  io(a, s, s.weapons.weapons.size());
+  const rc::WorldSnapshot world = s.world->snapshot();
+  w.count(world.size());
+  out.insert(out.end(), world.begin(), world.end());
+  return out;
+}
+
+void restoreMatch(MatchState& s, std::span<const std::uint8_t> snapshot) {
+  try {
+    rc::ByteReader r(snapshot, "match snapshot");
+    if (r.u32() != kMagic) r.fail("not a match snapshot");
+    if (const std::uint32_t format = r.u32(); format != kFormat)
+      r.fail("format " + std::to_string(format) + ", this build reads " + std::to_string(kFormat));
+    // Decoded into copies of the parts it changes, so that a refusal leaves the match whole.
+    struct Parts {
+      std::int64_t tick;
+      rc::Random rng;
+      std::vector<Actor> actors;
+      std::vector<BotMind> minds;
+      std::vector<PropState> props;
+      std::vector<Grenade> grenades;
+    } parts{s.tick, s.rng, s.actors, s.minds, s.props, s.grenades};
+    In a(r);
+    io(a, parts, s.weapons.weapons.size());
+    const std::size_t worldBytes = r.count(1);
+    if (r.position() + worldBytes != snapshot.size())
+      r.fail("the world's snapshot does not end where the snapshot does");
+    s.world->restore(snapshot.subspan(r.position()));
+    s.tick = parts.tick;
+    s.rng = parts.rng;
+    s.actors = std::move(parts.actors);
+    s.minds = std::move(parts.minds);
+    s.props = std::move(parts.props);
+    s.grenades = std::move(parts.grenades);
+    s.shots.clear();
+    s.explosions.clear();
+  } catch (const std::invalid_argument& e) {
+    throw MatchSnapshotError(e.what());
+  }
+}
+
+std::uint64_t Match::hash() const {
+  return fnv1a(saveMatch(s_));
+}
+
+namespace {
+
+std::string floatText(float v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", static_cast<double>(v));
+  return text;
+}
+
+std::string bodyName(const MatchState& s, rc::BodyId body) {
+  std::string name = "body " + std::to_string(body.index);
+  const std::uint64_t data = s.world->userData(body);
+  if (const std::optional<GameRef> ref = gameRefOf(data)) {
+    if (ref->kind == GameKind::actor && ref->index < s.actors.size())
+      return name + " (actor " + std::to_string(ref->index) + " '" + s.actors[ref->index].name +
+             "')";
+    return name + " (grenade " + std::to_string(ref->index) + ")";
+  }
+  if (const std::optional<LevelRef> ref = levelRefOf(data);
+      ref && ref->index < s.level.objects.size()) {
+    const LevelObject& o = s.level.objects[ref->index];
+    return name + " (" + levelObjectKindName(o.kind) + " " + std::to_string(o.tiledId) +
+           (o.name.empty() ? "" : " '" + o.name + "'") + ")";
+  }
+  return name;
+}
+
+}  // namespace
+
+std::vector<MatchDifference> compareMatches(const MatchState& a, const MatchState& b,
+                                            std::size_t limit) {
+  std::vector<MatchDifference> out;
+  auto add = [&](std::string what, std::string x, std::string y) {
+    if (out.size() < limit && x != y) out.push_back({std::move(what), std::move(x), std::move(y)});
+  };
+  auto addFloat = [&](const std::string& what, float x, float y) {
+    if (std::bit_cast<std::uint32_t>(x) != std::bit_cast<std::uint32_t>(y))
+      add(what, floatText(x), floatText(y));
+  };
+  add("tick", std::to_string(a.tick), std::to_string(b.tick));
+  add("the match's generator", std::to_string(a.rng.state()), std::to_string(b.rng.state()));
+  for (std::size_t i = 0; i < a.actors.size() && i < b.actors.size(); ++i) {
+    const Actor &x = a.actors[i], &y = b.actors[i];
+    const std::string who = "actor " + std::to_string(i) + " ('" + x.name + "') ";
+    add(who + "alive", std::to_string(x.alive), std::to_string(y.alive));
+    addFloat(who + "health", x.health, y.health);
+    addFloat(who + "aim", x.aim, y.aim);
+    add(who + "kills", std::to_string(x.kills), std::to_string(y.kills));
+    add(who + "deaths", std::to_string(x.deaths), std::to_string(y.deaths));
+    add(who + "cooldown", std::to_string(x.cooldown), std::to_string(y.cooldown));
+    for (std::size_t w = 0; w < a.weapons.weapons.size(); ++w)
+      add(who + "ammo of " + a.weapons.weapons[w].name, std::to_string(x.ammo[w]),
+          std::to_string(y.ammo[w]));
+    add(who + "input", std::to_string(fnv1a(toBytes(x.input))),
+        std::to_string(fnv1a(toBytes(y.input))));
+  }
+  for (std::size_t i = 0; i < a.props.size() && i < b.props.size(); ++i) {
+    const std::string who = "prop " + std::to_string(a.props[i].object) + " ";
+    addFloat(who + "health", a.props[i].health, b.props[i].health);
+    add(who + "destroyed", std::to_string(a.props[i].destroyed),
+        std::to_string(b.props[i].destroyed));
+  }
+  add("grenades", std::to_string(a.grenades.size()), std::to_string(b.grenades.size()));
+  // The world's bodies, by slot.
+  const std::vector<rc::BodyId> bodiesA = a.world->bodies(), bodiesB = b.world->bodies();
+  for (std::size_t i = 0, j = 0; i < bodiesA.size() || j < bodiesB.size();) {
+    if (j == bodiesB.size() || (i < bodiesA.size() && bodiesA[i].index < bodiesB[j].index)) {
+      add(bodyName(a, bodiesA[i]), "present", "absent");
+      ++i;
+      continue;
+    }
+    if (i == bodiesA.size() || bodiesB[j].index < bodiesA[i].index) {
+      add(bodyName(b, bodiesB[j]), "absent", "present");
+      ++j;
+      continue;
+    }
+    const rc::BodyId x = bodiesA[i++], y = bodiesB[j++];
+    const std::string who = bodyName(a, x) + " ";
+    const rc::Vec2 px = a.world->position(x), py = b.world->position(y);
+    const rc::Vec2 vx = a.world->linearVelocity(x), vy = b.world->linearVelocity(y);
+    addFloat(who + "position x", px.x, py.x);
+    addFloat(who + "position y", px.y, py.y);
+    addFloat(who + "angle", a.world->angle(x), b.world->angle(y));
+    addFloat(who + "velocity x", vx.x, vy.x);
+    addFloat(who + "velocity y", vx.y, vy.y);
+    addFloat(who + "angular velocity", a.world->angularVelocity(x), b.world->angularVelocity(y));
+    add(who + "awake", std::to_string(a.world->isAwake(x)), std::to_string(b.world->isAwake(y)));
+    add(who + "enabled", std::to_string(a.world->isEnabled(x)),
+        std::to_string(b.world->isEnabled(y)));
+  }
+  // Whatever else differs (contacts, warm starts, sleep timers, the broadphase) shows in the
+  // world's hash alone.
+  if (out.empty() && a.world->stateHash() != b.world->stateHash())
+    add("the world's contacts, timers or broadphase (bodies agree)", "", "differ");
+  return out;
+}
+
+}  // namespace game

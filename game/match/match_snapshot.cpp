@@ -256,61 +256,84 @@ std::vector<MatchDifference> compareMatches(const MatchState& a, const MatchStat
     if (std::bit_cast<std::uint32_t>(x) != std::bit_cast<std::uint32_t>(y))
       add(what, floatText(x), floatText(y));
   };
-  add("tick", std::to_string(a.tick), std::to_string(b.tick));
-  add("the match's generator", std::to_string(a.rng.state()), std::to_string(b.rng.state()));
+  auto addInt = [&](const std::string& what, std::int64_t x, std::int64_t y) {
+    add(what, std::to_string(x), std::to_string(y));
+  };
+  // A body's state, field by field, under the name of what it belongs to.
+  auto addBody = [&](const std::string& who, rc::BodyId body) {
+    const bool inA = a.world->isValid(body), inB = b.world->isValid(body);
+    if (!inA || !inB) {
+      add(who, inA ? "present" : "absent", inB ? "present" : "absent");
+      return;
+    }
+    const rc::Vec2 px = a.world->position(body), py = b.world->position(body);
+    const rc::Vec2 vx = a.world->linearVelocity(body), vy = b.world->linearVelocity(body);
+    addFloat(who + " position x", px.x, py.x);
+    addFloat(who + " position y", px.y, py.y);
+    addFloat(who + " angle", a.world->angle(body), b.world->angle(body));
+    addFloat(who + " velocity x", vx.x, vy.x);
+    addFloat(who + " velocity y", vx.y, vy.y);
+    addFloat(who + " angular velocity", a.world->angularVelocity(body),
+             b.world->angularVelocity(body));
+    addInt(who + " awake", a.world->isAwake(body), b.world->isAwake(body));
+    addInt(who + " enabled", a.world->isEnabled(body), b.world->isEnabled(body));
+  };
+  addInt("tick", a.tick, b.tick);
+  // Entities first, each with its body: what a person looks for is "which thing, which field".
   for (std::size_t i = 0; i < a.actors.size() && i < b.actors.size(); ++i) {
     const Actor &x = a.actors[i], &y = b.actors[i];
-    const std::string who = "actor " + std::to_string(i) + " ('" + x.name + "') ";
-    add(who + "alive", std::to_string(x.alive), std::to_string(y.alive));
-    addFloat(who + "health", x.health, y.health);
-    addFloat(who + "aim", x.aim, y.aim);
-    add(who + "kills", std::to_string(x.kills), std::to_string(y.kills));
-    add(who + "deaths", std::to_string(x.deaths), std::to_string(y.deaths));
-    add(who + "cooldown", std::to_string(x.cooldown), std::to_string(y.cooldown));
+    const std::string who = "actor " + std::to_string(i) + " ('" + x.name + "')";
+    addBody(who + " body " + std::to_string(x.body.index), x.body);
+    addInt(who + " alive", x.alive, y.alive);
+    addFloat(who + " health", x.health, y.health);
+    addFloat(who + " aim", x.aim, y.aim);
+    addInt(who + " kills", x.kills, y.kills);
+    addInt(who + " deaths", x.deaths, y.deaths);
+    addInt(who + " cooldown", x.cooldown, y.cooldown);
     for (std::size_t w = 0; w < a.weapons.weapons.size(); ++w)
-      add(who + "ammo of " + a.weapons.weapons[w].name, std::to_string(x.ammo[w]),
-          std::to_string(y.ammo[w]));
-    add(who + "input", std::to_string(fnv1a(toBytes(x.input))),
+      addInt(who + " ammo of " + a.weapons.weapons[w].name, x.ammo[w], y.ammo[w]);
+    add(who + " input", std::to_string(fnv1a(toBytes(x.input))),
         std::to_string(fnv1a(toBytes(y.input))));
   }
   for (std::size_t i = 0; i < a.props.size() && i < b.props.size(); ++i) {
-    const std::string who = "prop " + std::to_string(a.props[i].object) + " ";
-    addFloat(who + "health", a.props[i].health, b.props[i].health);
-    add(who + "destroyed", std::to_string(a.props[i].destroyed),
-        std::to_string(b.props[i].destroyed));
+    const PropState &x = a.props[i], &y = b.props[i];
+    const std::string who = "prop " + bodyName(a, x.body);
+    addFloat(who + " health", x.health, y.health);
+    addInt(who + " destroyed", x.destroyed, y.destroyed);
+    if (!x.destroyed && !y.destroyed) addBody(who, x.body);
   }
-  add("grenades", std::to_string(a.grenades.size()), std::to_string(b.grenades.size()));
-  // The world's bodies, by slot.
+  addInt("grenades", static_cast<std::int64_t>(a.grenades.size()),
+         static_cast<std::int64_t>(b.grenades.size()));
+  for (std::size_t i = 0; i < a.grenades.size() && i < b.grenades.size(); ++i) {
+    const Grenade &x = a.grenades[i], &y = b.grenades[i];
+    const std::string who = "grenade " + std::to_string(i);
+    addInt(who + " live", x.live, y.live);
+    addInt(who + " fuse", x.fuse, y.fuse);
+    if (x.live && y.live) addBody(who, x.body);
+  }
+  // The world's other bodies (the level's walls and triggers, should they move), by slot.
   const std::vector<rc::BodyId> bodiesA = a.world->bodies(), bodiesB = b.world->bodies();
   for (std::size_t i = 0, j = 0; i < bodiesA.size() || j < bodiesB.size();) {
     if (j == bodiesB.size() || (i < bodiesA.size() && bodiesA[i].index < bodiesB[j].index)) {
       add(bodyName(a, bodiesA[i]), "present", "absent");
       ++i;
-      continue;
-    }
-    if (i == bodiesA.size() || bodiesB[j].index < bodiesA[i].index) {
+    } else if (i == bodiesA.size() || bodiesB[j].index < bodiesA[i].index) {
       add(bodyName(b, bodiesB[j]), "absent", "present");
       ++j;
-      continue;
+    } else {
+      const rc::BodyId body = bodiesA[i++];
+      ++j;
+      const std::optional<GameRef> game = gameRefOf(a.world->userData(body));
+      const std::optional<LevelRef> level = levelRefOf(a.world->userData(body));
+      if (game || (level && level->kind == LevelObjectKind::prop)) continue;  // named above
+      addBody(bodyName(a, body), body);
     }
-    const rc::BodyId x = bodiesA[i++], y = bodiesB[j++];
-    const std::string who = bodyName(a, x) + " ";
-    const rc::Vec2 px = a.world->position(x), py = b.world->position(y);
-    const rc::Vec2 vx = a.world->linearVelocity(x), vy = b.world->linearVelocity(y);
-    addFloat(who + "position x", px.x, py.x);
-    addFloat(who + "position y", px.y, py.y);
-    addFloat(who + "angle", a.world->angle(x), b.world->angle(y));
-    addFloat(who + "velocity x", vx.x, vy.x);
-    addFloat(who + "velocity y", vx.y, vy.y);
-    addFloat(who + "angular velocity", a.world->angularVelocity(x), b.world->angularVelocity(y));
-    add(who + "awake", std::to_string(a.world->isAwake(x)), std::to_string(b.world->isAwake(y)));
-    add(who + "enabled", std::to_string(a.world->isEnabled(x)),
-        std::to_string(b.world->isEnabled(y)));
   }
+  add("the match's generator", std::to_string(a.rng.state()), std::to_string(b.rng.state()));
   // Whatever else differs (contacts, warm starts, sleep timers, the broadphase) shows in the
   // world's hash alone.
   if (out.empty() && a.world->stateHash() != b.world->stateHash())
-    add("the world's contacts, timers or broadphase (bodies agree)", "", "differ");
+    add("the world's contacts, timers or broadphase (bodies agree)", "equal", "differ");
   return out;
 }
 

@@ -40,7 +40,8 @@ std::uint64_t fnv1a(std::span<const std::uint8_t> bytes, std::uint64_t h = 0xcbf
 // is described (the tick, the generator, actors, minds, props, grenades, then the world's
 // bodies), each as "what: a vs b"; at most `limit` of them. For naming a divergence.
 struct MatchDifference {
-  std::string what;  // "actor 3 ('bot 2') health", "body 17 (actor 3) position x", ...
+  std::string
+      what;  // "actor 3 ('bot 2') body 17 position x", "prop body 9 (prop 31 'crate') angle"
   std::string recorded, replayed;
 };
 std::vector<MatchDifference> compareMatches(const MatchState& recorded, const MatchState& replayed,

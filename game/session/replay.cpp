@@ -44,7 +44,8 @@ const char* verdictName(Verdict v) {
   return "?";
 }
 
-ReplaySetup::ReplaySetup(const Recording& recording, const std::string& levelOverride) {
+ReplaySetup::ReplaySetup(const Recording& recording, const std::string& levelOverride,
+                         std::function<void(MatchState&)> testHook) {
   namespace fs = std::filesystem;
   const RecordingHeader& h = recording.header;
   if (!levelOverride.empty()) {
@@ -74,6 +75,7 @@ ReplaySetup::ReplaySetup(const Recording& recording, const std::string& levelOve
   config_.players = h.players;
   config_.bots = h.bots;
   config_.seed = h.seed;
+  config_.testHook = std::move(testHook);
   const std::unique_ptr<Match> match = makeMatch();
   const MatchState& s = match->state();
   if (s.levelHash != h.levelHash)
@@ -95,7 +97,7 @@ std::unique_ptr<Match> ReplaySetup::makeMatch() const {
 }
 
 ReplayReport replayRecording(const Recording& rec, const ReplayOptions& options) {
-  const ReplaySetup setup(rec, options.level);
+  const ReplaySetup setup(rec, options.level, options.testHook);
   std::unique_ptr<Match> match = setup.makeMatch();
   ReplayReport report;
   const std::int64_t last = std::clamp<std::int64_t>(options.to.value_or(rec.ticks), 0, rec.ticks);

@@ -21,7 +21,9 @@ namespace game {
 // what is wrong (no level there, another level's content, a weapon table that does not read).
 class ReplaySetup {
  public:
-  ReplaySetup(const Recording& recording, const std::string& levelOverride = "");
+  // `testHook`: MatchConfig::testHook of the matches it makes (tests of the synctest only).
+  ReplaySetup(const Recording& recording, const std::string& levelOverride = "",
+              std::function<void(MatchState&)> testHook = {});
   std::unique_ptr<Match> makeMatch() const;
   const std::string& levelPath() const { return levelPath_; }
 
@@ -46,6 +48,8 @@ struct ReplayOptions {
   std::string level;                     // the level's file, if not where the header says
   // After every tick played from `from` on (and once at `from` itself, before any tick).
   std::function<void(const Match&)> onTick;
+  // For tests of the synctest: state this keeps is hidden from snapshots (MatchConfig::testHook).
+  std::function<void(MatchState&)> testHook;
   // Every so often: the tick reached and the last tick to play.
   std::function<void(std::int64_t tick, std::int64_t last)> onProgress;
 };

@@ -7,6 +7,8 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <fstream>
+#include <iostream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +18,7 @@
 #include "game/level/level_error.h"
 #include "game/level/level_loader.h"
 #include "game/match/match.h"
+#include "game/session/input_script.h"
 #include "game/session/recording.h"
 #include "game/weapons/weapon_table.h"
 
@@ -43,7 +46,10 @@ int runPlay(std::span<const std::string_view> args) {
       ->check(CLI::Range(0LL, 1LL << 31));
   app.add_option("--weapons", weaponsPath, "the weapon table (default: the bundled one)");
   app.add_flag("--json", json, "the summary as a JSON object");
-  std::string recordPath;
+  std::string recordPath, inputPath;
+  app.add_option("--input", inputPath,
+                 "the players' controls from a script (FILE, or - for standard input; the format "
+                 "is in game/session/input_script.h) instead of the autopilot");
   int keyframeEvery = 300;
   app.add_option("--record", recordPath,
                  "record the match into FILE (written as it plays: a killed run leaves a file "
@@ -60,10 +66,25 @@ int runPlay(std::span<const std::string_view> args) {
     config.seed = seed;
     config.weapons = loadWeaponTable(weaponsPath);
     Match match(loadLevel(levelPath), config);
+    std::ifstream scriptFile;
+    std::optional<InputScript> script;
+    if (!inputPath.empty()) {
+      std::istream* in = &std::cin;
+      if (inputPath != "-") {
+        scriptFile.open(inputPath);
+        if (!scriptFile) {
+          std::fprintf(stderr, "ricochet play: %s: cannot open the input script\n",
+                       inputPath.c_str());
+          return kExitBadInput;
+        }
+        in = &scriptFile;
+      }
+      script.emplace(*in, inputPath == "-" ? "standard input" : inputPath, players);
+    }
     std::optional<Recorder> recorder;
     if (!recordPath.empty()) {
-      for (const std::string& input : {levelPath, weaponsPath})
-        if (sameFile(recordPath, input)) {
+      for (const std::string& input : {levelPath, weaponsPath, inputPath})
+        if (!input.empty() && input != "-" && sameFile(recordPath, input)) {
           std::fprintf(stderr, "ricochet play: --record %s: that is an input of the run (%s)\n",
                        recordPath.c_str(), input.c_str());
           return kExitUsage;
@@ -75,7 +96,11 @@ int runPlay(std::span<const std::string_view> args) {
     const auto start = std::chrono::steady_clock::now();
     std::size_t shots = 0, explosions = 0;
     for (long long t = 0; t < ticks; ++t) {
-      match.tick();
+      if (script) {
+        match.tick(script->inputsFor(t));
+      } else {
+        match.tick();
+      }
       if (recorder) recorder->afterTick(match);
       // Trigger pulls: a shotgun's pellets count once.
       for (const Shot& shot : match.state().shots)
@@ -106,6 +131,9 @@ int runPlay(std::span<const std::string_view> args) {
           ticks, match.state().actors.size(), kills, deaths, shots, explosions, hash, rate);
     }
     return 0;
+  } catch (const InputScriptError& e) {
+    std::fprintf(stderr, "ricochet play: %s\n", e.what());
+    return kExitBadInput;
   } catch (const RecordingError& e) {
     std::fprintf(stderr, "ricochet play: %s\n", e.what());
     return 1;

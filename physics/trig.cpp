@@ -60,15 +60,17 @@ SinCosD sinCosPoly(double r) {
 }
 
 // The short series for |x| < 1/16 (see sincosInline), for a double or a vector of doubles.
+// Vectors go through references: clang refuses an AVX vector passed or returned by value by a
+// function without the AVX target (sincos4 is AVX2, these templates are not), inlined or not.
 template <class D>
-[[gnu::always_inline]] inline D smallSine(D x) {
+[[gnu::always_inline]] inline void smallSine(const D& x, D& sine) {
   const D x2 = x * x;
-  return x + x * x2 * (-1.0 / 6.0 + x2 * (1.0 / 120.0 + x2 * (-1.0 / 5040.0)));
+  sine = x + x * x2 * (-1.0 / 6.0 + x2 * (1.0 / 120.0 + x2 * (-1.0 / 5040.0)));
 }
 template <class D>
-[[gnu::always_inline]] inline D smallCosine(D x) {
+[[gnu::always_inline]] inline void smallCosine(const D& x, D& cosine) {
   const D x2 = x * x;
-  return 1.0 - x2 * (0.5 + x2 * (-1.0 / 24.0 + x2 * (1.0 / 720.0)));
+  cosine = 1.0 - x2 * (0.5 + x2 * (-1.0 / 24.0 + x2 * (1.0 / 720.0)));
 }
 
 // atan on [0, 1]: shifted by pi/4 when t > tan(pi/8) so |u| <= tan(pi/8) ~= 0.4142, then the
@@ -121,8 +123,12 @@ float negateIf(bool flip, float a) {
   // omitted terms, x^9/9! < 2e-16 and x^8/8! < 6e-15 at |x| = 1/16, are far below float
   // precision, so the result is the full path's except where the double falls within 6e-15 of
   // a float rounding boundary. A settling pyramid's turns cost a third of the full path.
-  if (std::fabs(x) < 0.0625)
-    return {static_cast<float>(smallSine(x)), static_cast<float>(smallCosine(x))};
+  if (std::fabs(x) < 0.0625) {
+    double sine = 0.0, cosine = 0.0;
+    smallSine(x, sine);
+    smallCosine(x, cosine);
+    return {static_cast<float>(sine), static_cast<float>(cosine)};
+  }
   // From 2^24 on, floats are 2 rad or more apart and the three-part pi/2 runs out of digits
   // (at 1e20 the reduced angle would be thousands of radians and the polynomials overflow):
   // take the exact remainder by 2 pi (the double nearest) first, so the result stays a
@@ -170,7 +176,9 @@ using M4 = std::int32_t __attribute__((vector_size(16)));
         out[j] = sincosInline(radians[j]);
       continue;
     }
-    const D4 sSmall = smallSine(x), cSmall = smallCosine(x);
+    D4 sSmall, cSmall;
+    smallSine(x, sSmall);
+    smallCosine(x, cSmall);
     // The reduction: k = roundToInteger(x 2/pi), the magic sum's low bits are |k|.
     const D4 v = x * kTwoOverPi;
     const I4 vSign = __builtin_bit_cast(I4, v) & kSign;

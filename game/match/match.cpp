@@ -5,6 +5,8 @@
 #include <utility>
 
 #include "game/match/actors.h"
+#include "game/rules/pickups.h"
+#include "game/rules/score.h"
 #include "game/weapons/weapon_table.h"
 
 namespace game {
@@ -27,15 +29,25 @@ Match::Match(Level level, const MatchConfig& config) {
   s_.built = buildLevel(s_.level, *s_.world);
   for (std::size_t i = 0; i < s_.level.objects.size(); ++i) {
     const LevelObject& o = s_.level.objects[i];
-    if (o.material.health > 0.0f) s_.props.push_back({i, s_.built.bodies[i], o.material.health});
+    const bool destructible = o.material.health > 0.0f;
+    if (!destructible && o.bodyType != rc::BodyType::dynamicBody) continue;
+    PropState p;
+    p.object = i;
+    p.body = s_.built.bodies[i];
+    p.health = destructible ? o.material.health : 0.0f;
+    p.destructible = destructible;
+    s_.props.push_back(p);
   }
+  s_.pickups = makePickups(s_.level, s_.built, s_.weapons);
   spawnActors(s_);
+  makeTeams(s_);
 }
 
 void Match::tick(std::span<const PlayerInput> inputs) {
   MatchState& s = s_;
   s.shots.clear();
   s.explosions.clear();
+  s.crashes.clear();
   decideBots(s, inputs);
   moveActors(s);
   fireWeapons(s);
@@ -53,6 +65,7 @@ std::uint64_t Match::hash() const {
     }
   };
   auto mixFloat = [&](float f) { mix(std::bit_cast<std::uint32_t>(f), 4); };
+  auto mixInt = [&](std::int64_t v, int bytes) { mix(static_cast<std::uint64_t>(v), bytes); };
   mix(s_.world->stateHash(), 8);
   mix(static_cast<std::uint64_t>(s_.tick), 8);
   mix(s_.rng.state(), 8);
@@ -63,6 +76,11 @@ std::uint64_t Match::hash() const {
     mix(static_cast<std::uint64_t>(a.respawnTick), 8);
     mix(static_cast<std::uint32_t>(a.kills), 4);
     mix(static_cast<std::uint32_t>(a.deaths), 4);
+    mixInt(a.suicides, 4);
+    mixInt(a.exits, 4);
+    mixInt(a.score, 4);
+    mixInt(a.blamed, 4);
+    mixInt(a.blamedTick, 8);
     mix(static_cast<std::uint32_t>(a.cooldown), 4);
     for (std::size_t w = 0; w < s_.weapons.weapons.size(); ++w)
       mix(static_cast<std::uint32_t>(a.ammo[w]), 4);
@@ -70,8 +88,30 @@ std::uint64_t Match::hash() const {
       mix(b, 1);
   }
   for (const PropState& p : s_.props) {
+    mixInt(static_cast<std::int64_t>(p.object), 4);
     mixFloat(p.health);
+    mix(p.destructible, 1);
     mix(p.destroyed, 1);
+    mixInt(p.blamed, 4);
+    mixInt(p.blamedTick, 8);
+  }
+  for (const PickupState& p : s_.pickups) {
+    mixInt(p.pickup, 4);
+    mix(static_cast<std::uint8_t>(p.item), 1);
+    mix(p.weapon, 1);
+    mixFloat(p.amount);
+    mixFloat(p.position.x);
+    mixFloat(p.position.y);
+    mixFloat(p.radius);
+    mixInt(p.respawnTicks, 4);
+    mix(p.available, 1);
+    mixInt(p.respawnTick, 8);
+    mixInt(p.takenBy, 4);
+    mixInt(p.timesTaken, 4);
+  }
+  for (const TeamScore& t : s_.teams) {
+    for (const std::int32_t v : {t.team, t.kills, t.deaths, t.suicides, t.exits, t.score})
+      mixInt(v, 4);
   }
   for (const Grenade& g : s_.grenades) {
     mix(g.live, 1);

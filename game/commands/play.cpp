@@ -1,6 +1,7 @@
 // `ricochet play LEVEL.tmj [--bots K] [--seed S] [--ticks N] [--weapons FILE] [--json]`
 // A headless match on a level, the players on autopilot: prints one summary line (ticks, kills,
-// shots, explosions, the final hash, ticks per second of wall time). What a recording will replay,
+// shots, explosions, pickups taken, crashes, exits, suicides, each team's score, the final hash,
+// ticks per second of wall time). What a recording will replay,
 // and what the determinism tests compare across builds.
 #include <CLI/CLI.hpp>
 
@@ -94,7 +95,7 @@ int runPlay(std::span<const std::string_view> args) {
       recorder.emplace(recordPath, header);
     }
     const auto start = std::chrono::steady_clock::now();
-    std::size_t shots = 0, explosions = 0;
+    std::size_t shots = 0, explosions = 0, crashes = 0;
     for (long long t = 0; t < ticks; ++t) {
       if (script) {
         match.tick(script->inputsFor(t));
@@ -106,29 +107,49 @@ int runPlay(std::span<const std::string_view> args) {
       for (const Shot& shot : match.state().shots)
         shots += shot.pellet == 0;
       explosions += match.state().explosions.size();
+      crashes += match.state().crashes.size();
       if (ticks >= 60000 && t % 60000 == 0 && t > 0)
         std::fprintf(stderr, "ricochet play: tick %lld of %lld\n", t, ticks);
     }
     if (recorder) recorder->finish(match);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    int kills = 0, deaths = 0;
+    int kills = 0, deaths = 0, exits = 0, suicides = 0, pickups = 0;
     for (const Actor& a : match.state().actors) {
       kills += a.kills;
       deaths += a.deaths;
+      exits += a.exits;
+      suicides += a.suicides;
+    }
+    for (const PickupState& p : match.state().pickups)
+      pickups += p.timesTaken;
+    // Each team's points: "0:12,1:95" on the line, objects in JSON.
+    std::string scores, teams;
+    for (const TeamScore& t : match.state().teams) {
+      scores +=
+          (scores.empty() ? "" : ",") + std::to_string(t.team) + ":" + std::to_string(t.score);
+      teams += std::string(teams.empty() ? "" : ", ") + "{\"team\": " + std::to_string(t.team) +
+               ", \"score\": " + std::to_string(t.score) +
+               ", \"kills\": " + std::to_string(t.kills) +
+               ", \"deaths\": " + std::to_string(t.deaths) +
+               ", \"suicides\": " + std::to_string(t.suicides) +
+               ", \"exits\": " + std::to_string(t.exits) + "}";
     }
     const double rate = seconds > 0.0 ? static_cast<double>(ticks) / seconds : 0.0;
     const auto hash = static_cast<unsigned long long>(match.hash());
     if (json) {
       std::printf(
           "{\"ticks\": %lld, \"actors\": %zu, \"kills\": %d, \"deaths\": %d, \"shots\": %zu, "
-          "\"explosions\": %zu, \"hash\": \"%016llx\", \"ticks_per_second\": %.0f}\n",
-          ticks, match.state().actors.size(), kills, deaths, shots, explosions, hash, rate);
+          "\"explosions\": %zu, \"pickups\": %d, \"crashes\": %zu, \"exits\": %d, "
+          "\"suicides\": %d, \"teams\": [%s], \"hash\": \"%016llx\", \"ticks_per_second\": %.0f}\n",
+          ticks, match.state().actors.size(), kills, deaths, shots, explosions, pickups, crashes,
+          exits, suicides, teams.c_str(), hash, rate);
     } else {
       std::printf(
-          "ticks %lld actors %zu kills %d deaths %d shots %zu explosions %zu hash %016llx "
-          "ticks_per_second %.0f\n",
-          ticks, match.state().actors.size(), kills, deaths, shots, explosions, hash, rate);
+          "ticks %lld actors %zu kills %d deaths %d shots %zu explosions %zu pickups %d crashes "
+          "%zu exits %d suicides %d score %s hash %016llx ticks_per_second %.0f\n",
+          ticks, match.state().actors.size(), kills, deaths, shots, explosions, pickups, crashes,
+          exits, suicides, scores.empty() ? "-" : scores.c_str(), hash, rate);
     }
     return 0;
   } catch (const InputScriptError& e) {

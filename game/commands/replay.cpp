@@ -2,6 +2,8 @@
 // re-simulates a recorded session headless and prints one summary line; `--verify` checks every
 // recorded hash and names what diverged first. `ricochet replay --batch DIR_OR_LIST --shard i/n
 // --jobs J` verifies many sessions, one JSON line each (game/session/batch.h).
+#include <sys/resource.h>
+
 #include <chrono>
 #include <cinttypes>
 #include <cstdio>
@@ -122,7 +124,14 @@ int runReplay(std::span<const std::string_view> args) {
     const std::int64_t played = report.end - report.start;
     const double rate = seconds > 0.0 ? static_cast<double>(played) / seconds : 0.0;
     if (json) {
-      std::printf("%s\n", replayJson(path, report, seconds).c_str());
+      // The peak resident set, for the benchmarks' memory figure (a long replay's stays flat).
+      rusage resources{};
+      getrusage(RUSAGE_SELF, &resources);
+      std::string line = replayJson(path, report, seconds);
+      line.insert(line.size() - 1, ", \"ticks_per_second\": " +
+                                       std::to_string(static_cast<long long>(rate)) +
+                                       ", \"peak_rss_kib\": " + std::to_string(resources.ru_maxrss));
+      std::printf("%s\n", line.c_str());
     } else {
       std::printf("replay %s ticks %lld-%lld hash %016" PRIx64
                   " verdict %s hashes %d "

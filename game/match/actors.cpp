@@ -87,6 +87,8 @@ void revive(MatchState& s, std::size_t actor, rc::Vec2 where) {
   a.health = s.tuning.health;
   a.respawnTick = -1;
   a.cooldown = 0;
+  a.blamed = -1;
+  a.blamedTick = -1;
   arm(a, s.weapons);
   s.minds[actor] = BotMind{};
   s.world->setTransform(a.body, where, 0.0f);

@@ -5,6 +5,8 @@
 
 #include "game/level/level_hash.h"
 #include "game/match/actors.h"
+#include "game/rules/pickups.h"
+#include "game/rules/score.h"
 #include "game/weapons/weapon_table.h"
 
 namespace game {
@@ -28,15 +30,25 @@ Match::Match(Level level, const MatchConfig& config) {
   s_.levelHash = levelContentHash(s_.level, s_.world->stateHash());
   for (std::size_t i = 0; i < s_.level.objects.size(); ++i) {
     const LevelObject& o = s_.level.objects[i];
-    if (o.material.health > 0.0f) s_.props.push_back({i, s_.built.bodies[i], o.material.health});
+    const bool destructible = o.material.health > 0.0f;
+    if (!destructible && o.bodyType != rc::BodyType::dynamicBody) continue;
+    PropState p;
+    p.object = i;
+    p.body = s_.built.bodies[i];
+    p.health = destructible ? o.material.health : 0.0f;
+    p.destructible = destructible;
+    s_.props.push_back(p);
   }
+  s_.pickups = makePickups(s_.level, s_.built, s_.weapons);
   spawnActors(s_);
+  makeTeams(s_);
 }
 
 void Match::tick(std::span<const PlayerInput> inputs) {
   MatchState& s = s_;
   s.shots.clear();
   s.explosions.clear();
+  s.crashes.clear();
   decideBots(s, inputs);
   moveActors(s);
   fireWeapons(s);

@@ -7,7 +7,8 @@
 //   weapons     grenades whose fuse ran out explode; shots are ray casts through the world,
 //               now, before the bodies move (penetration, ricochets); grenades are thrown
 //   physics     the world steps once (World::step)
-//   rules       the step's events: damage, deaths, triggers, grenades' bounces; respawns due
+//   rules       the step's events: impacts, triggers (kill zones, exits), grenades' bounces;
+//               pickups taken and back; respawns due
 // Entities refer to bodies by handle and are created and removed between steps only. Randomness
 // comes from the match's own generator, seeded by the config; order is creation order.
 #pragma once
@@ -46,6 +47,24 @@ struct ActorTuning {
   float thickness = 0.6f;
 };
 
+// The rules' numbers (game/rules/), in one place like ActorTuning.
+struct RuleTuning {
+  // Impacts (rules/impacts.h): a contact that begins closing faster than impactSpeed hurts what
+  // it joins by impactDamage per N s of the impulse the speed above it carries,
+  // D = impactDamage * mu * (v - impactSpeed), mu the pair's reduced mass. 6 m/s is above what
+  // walking (5 m/s) gives against anything at rest. With the bundled weapons: a 1 kg crate a
+  // blast throws at 7 m/s deals 3 to an actor standing, 18 to one running at it; a grenade
+  // (0.094 kg) thrown at a standing actor 4; an actor a blast throws against a wall at 7.6 m/s
+  // (2.6 from the blast, 5 its own) takes 20.
+  float impactSpeed = 6.0f;   // m/s
+  float impactDamage = 4.0f;  // per N s
+  // A blast's thrower is credited with what the bodies it pushed do for this long (ticks).
+  std::int64_t blameTicks = 2 * kTicksPerSecond;
+  // Score: points per kill of an enemy and per exit reached.
+  int killScore = 1;
+  int exitScore = 5;
+};
+
 struct Actor {
   ActorKind kind = ActorKind::bot;
   int team = 0;
@@ -55,18 +74,56 @@ struct Actor {
   float health = 0.0f;
   float aim = 0.0f;               // radians: where it faces (from its last input)
   std::int64_t respawnTick = -1;  // while dead: the tick it comes back
-  int kills = 0, deaths = 0;
+  // Score (rules/score.h): kills of enemies, deaths, the deaths no enemy scored for (its own
+  // grenade, a kill zone, a team-mate, a crate no enemy threw), exits reached, and the points.
+  int kills = 0, deaths = 0, suicides = 0, exits = 0, score = 0;
+  // The thrower of the last blast that pushed it, and when (-1: none): credited with an impact
+  // it suffers within RuleTuning::blameTicks (thrown against a wall).
+  std::int32_t blamed = -1;
+  std::int64_t blamedTick = -1;
   int cooldown = 0;                     // ticks until it can fire or throw again
   std::array<int, kMaxWeapons> ammo{};  // per weapon of the table
   PlayerInput input;                    // this tick's
 };
 
-// A level prop that can be destroyed (its material's health above zero).
+// A level object the match follows: every dynamic one (crates, barrels: pushed, thrown by
+// blasts) and every one with health (its material's health above zero), in the level's order.
 struct PropState {
   std::size_t object = 0;  // index in Level::objects
   rc::BodyId body;
-  float health = 0.0f;
-  bool destroyed = false;
+  float health = 0.0f;        // what is left (0 for an indestructible prop)
+  bool destructible = false;  // its material has health: it can be destroyed
+  bool destroyed = false;     // its body has left the world
+  // The thrower of the last blast that pushed it, and when (-1: none): credited with the
+  // impacts it deals within RuleTuning::blameTicks.
+  std::int32_t blamed = -1;
+  std::int64_t blamedTick = -1;
+};
+
+// Team scores: the sums of its actors' (rules/score.h), one per team in the order the teams
+// first appear among the actors.
+struct TeamScore {
+  std::int32_t team = 0;
+  std::int32_t kills = 0, deaths = 0, suicides = 0, exits = 0, score = 0;
+};
+
+// What a pickup is to the game (LevelPickup::item): an item it does not know is never taken.
+enum class PickupItem : std::uint8_t { unknown, health, ammo };
+
+// A level pickup (rules/pickups.h): what it gives, where, and whether it is there now. Taken by a
+// living actor whose disc touches its circle and who can use it; back respawnTicks later.
+struct PickupState {
+  std::uint32_t pickup = 0;  // index in BuiltLevel::pickups
+  PickupItem item = PickupItem::unknown;
+  std::uint8_t weapon = 0;        // ammo: the weapon whose rounds it gives (index in the table)
+  float amount = 0.0f;            // health points, or rounds (whole: rounded down)
+  rc::Vec2 position{};            // its centre (m)
+  float radius = 0.5f;            // m
+  std::int32_t respawnTicks = 0;  // 0: taken once, never back
+  bool available = true;          // there to be taken
+  std::int64_t respawnTick = -1;  // while taken: the tick it is back (-1: never)
+  std::int32_t takenBy = -1;      // the actor that took it last
+  std::int32_t timesTaken = 0;
 };
 
 // What a shot did this tick, for the view and the tests: its path as straight segments (more
@@ -88,6 +145,17 @@ struct Grenade {
   int fuse = 0;     // ticks left
   int bounces = 0;  // contacts it hit faster than the world's hit-event threshold
   bool live = false;
+};
+
+// A contact this tick that began faster than RuleTuning::impactSpeed and hurt (rules/impacts.h),
+// for the view and the tests. Sides are actors or props (-1: neither, a wall, a grenade).
+struct Crash {
+  rc::Vec2 point{};
+  float speed = 0.0f;   // approach speed, m/s
+  float damage = 0.0f;  // dealt to each side that can be hurt
+  std::array<std::int32_t, 2> actor{-1, -1};
+  std::array<std::int32_t, 2> object{-1, -1};  // level objects (props)
+  std::int32_t credited = -1;                  // the actor credited with a kill
 };
 
 // An explosion this tick, for the view and the tests.
@@ -129,17 +197,21 @@ struct MatchState {
   MatchConfig config;
   std::uint64_t levelHash = 0;  // levelContentHash of the level (what a recording checks)
   ActorTuning tuning;
+  RuleTuning rules;
   WeaponTable weapons;
   std::unique_ptr<rc::World> world;
   BuiltLevel built;
   std::vector<Actor> actors;
   std::vector<BotMind> minds;  // one per actor
   std::vector<PropState> props;
+  std::vector<PickupState> pickups;  // one per BuiltLevel::pickups, in order
+  std::vector<TeamScore> teams;
   rc::Random rng{1};
   std::int64_t tick = 0;
   std::vector<Grenade> grenades;
   std::vector<Shot> shots;            // this tick's
   std::vector<Explosion> explosions;  // this tick's
+  std::vector<Crash> crashes;         // this tick's
 };
 
 // User data of the bodies and shapes a match creates (a level's carry levelUserData): a tag in

@@ -118,6 +118,11 @@ void io(A& a, S& s, std::size_t weapons) {
     a(actor.respawnTick);
     a(actor.kills);
     a(actor.deaths);
+    a(actor.suicides);
+    a(actor.exits);
+    a(actor.score);
+    a(actor.blamed);
+    a(actor.blamedTick);
     a(actor.cooldown);
     for (std::size_t w = 0; w < weapons; ++w)
       a(actor.ammo[w]);
@@ -144,6 +149,24 @@ void io(A& a, S& s, std::size_t weapons) {
   for (auto& prop : s.props) {
     a(prop.health);
     a(prop.destroyed);
+    a(prop.blamed);
+    a(prop.blamedTick);
+  }
+  // Pickups' and teams' fixed parts (what, where, which team) come from the level and the actors.
+  fixedCount(a, s.pickups.size(), "pickups");
+  for (auto& p : s.pickups) {
+    a(p.available);
+    a(p.respawnTick);
+    a(p.takenBy);
+    a(p.timesTaken);
+  }
+  fixedCount(a, s.teams.size(), "teams");
+  for (auto& t : s.teams) {
+    a(t.kills);
+    a(t.deaths);
+    a(t.suicides);
+    a(t.exits);
+    a(t.score);
   }
   const std::size_t grenades = a.count(s.grenades.size(), 30);
   if constexpr (A::reading) s.grenades.resize(grenades);
@@ -193,8 +216,10 @@ void restoreMatch(MatchState& s, std::span<const std::uint8_t> snapshot) {
       std::vector<Actor> actors;
       std::vector<BotMind> minds;
       std::vector<PropState> props;
+      std::vector<PickupState> pickups;
+      std::vector<TeamScore> teams;
       std::vector<Grenade> grenades;
-    } parts{s.tick, s.rng, s.actors, s.minds, s.props, s.grenades};
+    } parts{s.tick, s.rng, s.actors, s.minds, s.props, s.pickups, s.teams, s.grenades};
     In a(r);
     io(a, parts, s.weapons.weapons.size());
     const std::size_t worldBytes = r.count(1);
@@ -206,9 +231,12 @@ void restoreMatch(MatchState& s, std::span<const std::uint8_t> snapshot) {
     s.actors = std::move(parts.actors);
     s.minds = std::move(parts.minds);
     s.props = std::move(parts.props);
+    s.pickups = std::move(parts.pickups);
+    s.teams = std::move(parts.teams);
     s.grenades = std::move(parts.grenades);
     s.shots.clear();
     s.explosions.clear();
+    s.crashes.clear();
   } catch (const std::invalid_argument& e) {
     throw MatchSnapshotError(e.what());
   }
@@ -289,6 +317,9 @@ std::vector<MatchDifference> compareMatches(const MatchState& a, const MatchStat
     addFloat(who + " aim", x.aim, y.aim);
     addInt(who + " kills", x.kills, y.kills);
     addInt(who + " deaths", x.deaths, y.deaths);
+    addInt(who + " suicides", x.suicides, y.suicides);
+    addInt(who + " exits", x.exits, y.exits);
+    addInt(who + " score", x.score, y.score);
     addInt(who + " cooldown", x.cooldown, y.cooldown);
     for (std::size_t w = 0; w < a.weapons.weapons.size(); ++w)
       addInt(who + " ammo of " + a.weapons.weapons[w].name, x.ammo[w], y.ammo[w]);
@@ -302,6 +333,16 @@ std::vector<MatchDifference> compareMatches(const MatchState& a, const MatchStat
     addInt(who + " destroyed", x.destroyed, y.destroyed);
     if (!x.destroyed && !y.destroyed) addBody(who, x.body);
   }
+  for (std::size_t i = 0; i < a.pickups.size() && i < b.pickups.size(); ++i) {
+    const PickupState &x = a.pickups[i], &y = b.pickups[i];
+    const std::string who = "pickup " + std::to_string(i);
+    addInt(who + " available", x.available, y.available);
+    addInt(who + " back at tick", x.respawnTick, y.respawnTick);
+    addInt(who + " taken by", x.takenBy, y.takenBy);
+  }
+  for (std::size_t i = 0; i < a.teams.size() && i < b.teams.size(); ++i)
+    addInt("team " + std::to_string(a.teams[i].team) + " score", a.teams[i].score,
+           b.teams[i].score);
   addInt("grenades", static_cast<std::int64_t>(a.grenades.size()),
          static_cast<std::int64_t>(b.grenades.size()));
   for (std::size_t i = 0; i < a.grenades.size() && i < b.grenades.size(); ++i) {

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "game/rules/score.h"
+
 namespace game {
 
 void killActor(MatchState& s, std::size_t actor, std::optional<std::size_t> attacker) {
@@ -9,12 +11,10 @@ void killActor(MatchState& s, std::size_t actor, std::optional<std::size_t> atta
   if (!a.alive) return;
   a.alive = false;
   a.health = 0.0f;
-  ++a.deaths;
   a.respawnTick = s.tick + static_cast<std::int64_t>(s.tuning.respawnSeconds * kTicksPerSecond);
   s.world->setLinearVelocity(a.body, {});
   s.world->setEnabled(a.body, false);
-  if (attacker && *attacker != actor && s.actors[*attacker].team != a.team)
-    ++s.actors[*attacker].kills;
+  scoreDeath(s, actor, attacker);
 }
 
 void damageActor(MatchState& s, std::size_t actor, float amount,
@@ -25,15 +25,19 @@ void damageActor(MatchState& s, std::size_t actor, float amount,
   if (a.health == 0.0f) killActor(s, actor, attacker);
 }
 
+PropState* propOf(MatchState& s, std::size_t object) {
+  for (PropState& p : s.props)
+    if (p.object == object) return &p;
+  return nullptr;
+}
+
 void damageProp(MatchState& s, std::size_t object, float amount) {
-  for (PropState& p : s.props) {
-    if (p.object != object || p.destroyed || !(amount > 0.0f)) continue;
-    p.health = std::max(0.0f, p.health - amount);
-    if (p.health == 0.0f) {
-      p.destroyed = true;
-      s.world->destroyBody(p.body);
-    }
-    return;
+  PropState* p = propOf(s, object);
+  if (p == nullptr || !p->destructible || p->destroyed || !(amount > 0.0f)) return;
+  p->health = std::max(0.0f, p->health - amount);
+  if (p->health == 0.0f) {
+    p->destroyed = true;
+    s.world->destroyBody(p->body);
   }
 }
 

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "game/rules/damage.h"
+#include "game/rules/impacts.h"
 
 namespace game {
 
@@ -40,6 +41,7 @@ void explode(MatchState& s, rc::Vec2 center, const GrenadeSpec& grenade, std::si
     if (distance > 0.0f)
       world.applyLinearImpulse(body, (grenade.blastImpulse * share / distance) * d, target);
     ++e.bodiesPushed;
+    blameBlast(s, userData, thrower);
     if (const std::optional<GameRef> ref = gameRefOf(userData);
         ref && ref->kind == GameKind::actor) {
       e.actorsHit.push_back(ref->index);

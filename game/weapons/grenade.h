@@ -5,9 +5,10 @@
 // Created in the weapons phase and destroyed there, between steps; their bodies and shapes carry
 // gameUserData(GameKind::projectile, slot).
 //
-// Their bounces are counted (Grenade::bounces) but hurt no one: a 0.1 kg grenade at 12 m/s
-// carries 7 J, a thrown stone's worth; the blast is what a grenade is for, and a direct hit that
-// hurt would make it a slow hitscan weapon with a cooldown.
+// Their bounces are counted (Grenade::bounces). A direct hit hurts only as any impact does
+// (rules/impacts.h, the thrower credited): a 0.094 kg grenade is a thrown stone, a few points
+// (4 at 17 m/s against a standing actor, 6 against one running at it); the blast is what a grenade
+// is for, and a direct hit that hurt more would make it a slow hitscan weapon with a cooldown.
 #pragma once
 
 #include <cstddef>

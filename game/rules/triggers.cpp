@@ -1,0 +1,53 @@
+#include "game/rules/triggers.h"
+
+#include <vector>
+
+#include "game/match/actors.h"
+#include "game/rules/damage.h"
+#include "game/rules/score.h"
+
+namespace game {
+namespace {
+
+// The level trigger a sensor shape belongs to, if any.
+const BuiltTrigger* triggerOf(const MatchState& s, const rc::ShapeRef& sensor) {
+  const std::optional<LevelRef> ref = levelRefOf(sensor.bodyUserData);
+  if (!ref || ref->kind != LevelObjectKind::trigger) return nullptr;
+  for (const BuiltTrigger& t : s.built.triggers)
+    if (t.object == ref->index) return &t;
+  return nullptr;
+}
+
+// The actor leaves through the exit and comes back in at its respawn point.
+void leaveThroughExit(MatchState& s, std::size_t actor) {
+  scoreExit(s, actor);
+  const Actor& a = s.actors[actor];
+  s.world->setTransform(a.body, respawnPoint(s, actor), 0.0f);
+  s.world->setLinearVelocity(a.body, {});
+  s.minds[actor] = BotMind{};
+}
+
+}  // namespace
+
+void applyTriggers(MatchState& s) {
+  // Events are copies made by the step: acting on them (killing, moving bodies) is safe. An
+  // actor entering two shapes of one exit in a step leaves once.
+  std::vector<bool> exited;
+  for (const rc::SensorEvent& e : s.world->sensorEvents().begin) {
+    const BuiltTrigger* trigger = triggerOf(s, e.sensor);
+    const std::optional<GameRef> visitor = gameRefOf(e.visitor.bodyUserData);
+    if (trigger == nullptr || !visitor || visitor->kind != GameKind::actor ||
+        visitor->index >= s.actors.size() || !s.actors[visitor->index].alive)
+      continue;
+    if (trigger->action == "kill") {
+      killActor(s, visitor->index, std::nullopt);
+    } else if (trigger->action == "exit") {
+      exited.resize(s.actors.size());
+      if (exited[visitor->index]) continue;
+      exited[visitor->index] = true;
+      leaveThroughExit(s, visitor->index);
+    }
+  }
+}
+
+}  // namespace game

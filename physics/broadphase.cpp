@@ -147,7 +147,9 @@ Quadtree::Quadtree(const AABB& worldBounds, int maxDepth) : ProxyStore("Quadtree
       Level& level = tree->levels[static_cast<std::size_t>(l)];
       level.side = 1 << l;
       level.cellSize = size_ / static_cast<float>(level.side);
-      level.heads.assign(static_cast<std::size_t>(level.side) * level.side, kNullProxy);
+      // Cells are allocated when the level first holds a proxy (link, load): a default world's
+      // finest levels are a million cells (11 MB to zero) that a small scene never touches, and
+      // a batch of short replays would pay for them every time.
     }
   }
 }
@@ -160,6 +162,10 @@ ProxyId& Quadtree::headOf(Tree& tree, int level, int cell) {
 void Quadtree::link(ProxyId id, Tree& tree, int level, int cell) {
   ProxyData& p = proxies_[static_cast<std::size_t>(id)];
   ProxyLinks& k = links_[static_cast<std::size_t>(id)];
+  if (level >= 0) {
+    Level& lv = tree.levels[static_cast<std::size_t>(level)];
+    if (lv.heads.empty()) lv.heads.assign(static_cast<std::size_t>(lv.side) * lv.side, kNullProxy);
+  }
   ProxyId& head = headOf(tree, level, cell);
   k.level = level;
   k.cell = cell;
@@ -372,6 +378,7 @@ void Quadtree::validateLists(bool fromHeads) const {
     } else {
       for (int l = 0; l <= maxDepth_; ++l) {
         const Level& lv = tree->levels[static_cast<std::size_t>(l)];
+        if (lv.heads.empty()) continue;  // never held a proxy
         for (int c = 0; c < lv.side * lv.side; ++c)
           population[static_cast<std::size_t>(l)] +=
               walk(lv.heads[static_cast<std::size_t>(c)], l, c, &lv);
@@ -436,7 +443,7 @@ void Quadtree::clearAll() {
     const ProxyLinks& k = links_[i];
     if (!proxies_[i].alive || k.level < 0 || k.level > maxDepth_) continue;
     Level& lv = treeOf(proxies_[i]).levels[static_cast<std::size_t>(k.level)];
-    if (k.cell >= 0 && k.cell < lv.side * lv.side)
+    if (k.cell >= 0 && k.cell < lv.side * lv.side && !lv.heads.empty())
       lv.heads[static_cast<std::size_t>(k.cell)] = kNullProxy;
   }
   proxies_.clear();
@@ -497,6 +504,8 @@ void Quadtree::load(ByteReader& in) {
       if (k.cell < 0 || k.cell >= lv.side * lv.side) in.fail("broadphase: cell out of range");
       ++lv.population;
       if (k.prev == kNullProxy) {
+        if (lv.heads.empty())
+          lv.heads.assign(static_cast<std::size_t>(lv.side) * lv.side, kNullProxy);
         ProxyId& head = lv.heads[static_cast<std::size_t>(k.cell)];
         if (head != kNullProxy) in.fail("broadphase: two heads of one cell");
         head = static_cast<ProxyId>(i);

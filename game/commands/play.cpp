@@ -1,7 +1,9 @@
-// `ricochet play LEVEL.tmj [--bots K] [--seed S] [--ticks N] [--weapons FILE] [--json]`
+// `ricochet play LEVEL.tmj [--bots K] [--seed S] [--ticks N] [--weapons FILE] [--json]
+//                         [--frames DIR --every K --size WxH --overlay --sheet FILE --video FILE]`
 // A headless match on a level, the players on autopilot: prints one summary line (ticks, kills,
 // shots, explosions, the final hash, ticks per second of wall time). What a recording will replay,
-// and what the determinism tests compare across builds.
+// and what the determinism tests compare across builds. With --frames, the match is rendered
+// (game/view/match_frames.h); progress goes to stderr on long runs.
 #include <CLI/CLI.hpp>
 
 #include <chrono>
@@ -11,9 +13,11 @@
 #include <vector>
 
 #include "game/cli.h"
+#include "game/commands/progress.h"
 #include "game/level/level_error.h"
 #include "game/level/level_loader.h"
 #include "game/match/match.h"
+#include "game/view/match_frames.h"
 #include "game/weapons/weapon_table.h"
 
 namespace game {
@@ -21,8 +25,8 @@ namespace game {
 int runPlay(std::span<const std::string_view> args) {
   CLI::App app{
       "Plays a headless match on a Tiled level: bots against the players, the players on\n"
-      "autopilot. Prints one summary line on stdout.\n"
-      "Exit codes: 0 done, 1 bad level, 2 bad command line.",
+      "autopilot. Prints one summary line on stdout; --frames renders the match.\n"
+      "Exit codes: 0 done, 1 bad level or weapon table or unwritable output, 2 bad command line.",
       "ricochet play"};
   std::string levelPath;
   int bots = -1, players = 1;
@@ -40,6 +44,8 @@ int runPlay(std::span<const std::string_view> args) {
       ->check(CLI::Range(0LL, 1LL << 31));
   app.add_option("--weapons", weaponsPath, "the weapon table (default: the bundled one)");
   app.add_flag("--json", json, "the summary as a JSON object");
+  FrameArgs frameArgs;
+  addFrameOptions(app, frameArgs);
   std::vector<std::string> argv{"ricochet play"};
   for (std::string_view a : args)
     argv.emplace_back(a);
@@ -56,6 +62,15 @@ int runPlay(std::span<const std::string_view> args) {
     std::fprintf(stderr, "ricochet play: %s (try ricochet play --help)\n", e.what());
     return 2;
   }
+  FrameOptions frameOptions;
+  const RunInput inputs[] = {{"the level", levelPath}, {"the weapon table", weaponsPath}};
+  auto frameError = frameOptionsFrom(frameArgs, frameOptions);
+  if (!frameError) frameError = checkFrameOptions(frameOptions, inputs);
+  if (frameError) {
+    std::fprintf(stderr, "ricochet play: %s%s\n", frameError->message.c_str(),
+                 frameError->exitCode == 2 ? " (try ricochet play --help)" : "");
+    return frameError->exitCode;
+  }
 
   try {
     MatchConfig config;
@@ -64,17 +79,22 @@ int runPlay(std::span<const std::string_view> args) {
     config.seed = seed;
     config.weapons = loadWeaponTable(weaponsPath);
     Match match(loadLevel(levelPath), config);
+    MatchFrames frames(frameOptions, "ricochet play", match.state(), static_cast<long>(ticks),
+                       levelPath);
+    Progress progress("ricochet play", "tick", ticks);
     const auto start = std::chrono::steady_clock::now();
     std::size_t shots = 0, explosions = 0;
+    frames.update(match.state());
     for (long long t = 0; t < ticks; ++t) {
       match.tick();
+      frames.update(match.state());
       // Trigger pulls: a shotgun's pellets count once.
       for (const Shot& shot : match.state().shots)
         shots += shot.pellet == 0;
       explosions += match.state().explosions.size();
-      if (ticks >= 60000 && t % 60000 == 0 && t > 0)
-        std::fprintf(stderr, "ricochet play: tick %lld of %lld\n", t, ticks);
+      progress.update(t + 1, frameOptions.enabled() ? frames.framesAdded() : -1);
     }
+    frames.finish();
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     int kills = 0, deaths = 0;
@@ -96,6 +116,9 @@ int runPlay(std::span<const std::string_view> args) {
           ticks, match.state().actors.size(), kills, deaths, shots, explosions, hash, rate);
     }
     return 0;
+  } catch (const FrameOutputError& e) {
+    std::fprintf(stderr, "ricochet play: %s\n", e.what());
+    return 1;
   } catch (const WeaponTableError& e) {
     std::fprintf(stderr, "ricochet play: %s\n", e.what());
     return 1;

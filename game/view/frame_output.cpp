@@ -159,14 +159,15 @@ std::string encodeVideo(const std::string& dir, double fps, const std::string& o
   return "video in " + out;
 }
 
-// The directory a file will be written in must exist (found now, not after a long run).
-void checkParent(const char* option, const std::string& file) {
+// The directory a file will be written in must exist, or be the frames' own (found now, not after
+// a long run).
+void checkParent(const char* option, const std::string& file, const fs::path& frames) {
   if (file.empty()) return;
   std::error_code ec;
   if (fs::is_directory(file, ec))
     throw FrameOutputError(std::string(option) + ": '" + file + "' is a directory");
   const fs::path parent = fs::path(file).parent_path();
-  if (!parent.empty() && !fs::is_directory(parent, ec))
+  if (!parent.empty() && !fs::is_directory(parent, ec) && !samePath(parent, frames))
     throw FrameOutputError(std::string(option) + ": cannot write '" + file + "': no directory '" +
                            parent.string() + "'");
 }
@@ -192,6 +193,8 @@ FrameOutput::FrameOutput(const FrameOptions& options, std::string command, long 
   std::error_code ec;
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
     throw FrameOutputError("--frames: '" + options.directory + "' is a file, not a directory");
+  checkParent("--sheet", options.sheet, dir);
+  checkParent("--video", options.video, dir);
   fs::create_directories(dir, ec);
   if (ec)
     throw FrameOutputError("--frames: cannot create directory '" + options.directory +
@@ -199,8 +202,6 @@ FrameOutput::FrameOutput(const FrameOptions& options, std::string command, long 
   if (::access(dir.c_str(), W_OK | X_OK) != 0)
     throw FrameOutputError("--frames: cannot write in '" + options.directory +
                            "': " + std::strerror(errno));
-  checkParent("--sheet", options.sheet);
-  checkParent("--video", options.video);
   auto impl = std::make_unique<Impl>();
   impl->options = options;
   impl->command = std::move(command);

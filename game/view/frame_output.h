@@ -77,9 +77,10 @@ class FrameOutputError : public std::runtime_error {
 
 class FrameOutput {
  public:
-  // Without options.directory, nothing is made and every call does nothing. Otherwise makes the
-  // directory (FrameOutputError when it cannot, or it is a file), checks that the sheet's and
-  // the video's directories exist, and makes the renderer and the writer thread. `command`
+  // Without options.directory, nothing is made and every call does nothing. Otherwise checks that
+  // the sheet's and the video's directories exist (or are the frames' own), makes the directory
+  // (FrameOutputError for any of these when it cannot be, or it is a file), and makes the renderer
+  // and the writer thread. `command`
   // starts the lines on stderr ("ricochet play"); `steps` is the run's length (the sheet picks
   // its frames evenly from it); `stepSeconds` the simulated time of a step (the video's rate).
   FrameOutput(const FrameOptions& options, std::string command, long steps, double stepSeconds);

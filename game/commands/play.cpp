@@ -45,7 +45,7 @@ int runPlay(std::span<const std::string_view> args) {
   app.add_option("--weapons", weaponsPath, "the weapon table (default: the bundled one)");
   app.add_flag("--json", json, "the summary as a JSON object");
   FrameArgs frameArgs;
-  addFrameOptions(app, frameArgs);
+  addFrameOptions(app, frameArgs, "tick");
   std::vector<std::string> argv{"ricochet play"};
   for (std::string_view a : args)
     argv.emplace_back(a);
@@ -94,9 +94,9 @@ int runPlay(std::span<const std::string_view> args) {
       explosions += match.state().explosions.size();
       progress.update(t + 1, frameOptions.enabled() ? frames.framesAdded() : -1);
     }
-    frames.finish();
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    frames.finish();  // the last frames, the sheet and the video: after the clock stops
     int kills = 0, deaths = 0;
     for (const Actor& a : match.state().actors) {
       kills += a.kills;

@@ -66,11 +66,12 @@ std::optional<std::string> parseSize(std::string_view v, int& width, int& height
   return std::nullopt;
 }
 
-void addFrameOptions(CLI::App& app, FrameArgs& args) {
-  app.add_option("--frames", args.frames,
-                 "render frame_000000.png, ... into DIR (step 0 and every K-th step)")
+void addFrameOptions(CLI::App& app, FrameArgs& args, const std::string& unit) {
+  app.add_option(
+         "--frames", args.frames,
+         "render frame_000000.png, ... into DIR (" + unit + " 0 and every K-th " + unit + ")")
       ->option_text("DIR");
-  app.add_option("--every", args.every, "with --frames: every K-th step (default 1)")
+  app.add_option("--every", args.every, "with --frames: every K-th " + unit + " (default 1)")
       ->option_text("K");
   app.add_option("--size", args.size, "with --frames: frame size in pixels (default 640x360)")
       ->option_text("WxH");

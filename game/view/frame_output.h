@@ -50,12 +50,13 @@ std::optional<std::string> parseEvery(std::string_view text, long& every);
 std::optional<std::string> parseSize(std::string_view text, int& width, int& height);
 
 // Commands written with CLI11: --frames, --every, --size, --overlay, --sheet and --video added to
-// `app`; their texts wait in `args` until frameOptionsFrom reads and checks them.
+// `app` (their help counting in `unit`s: "tick", "step"); their texts wait in `args` until
+// frameOptionsFrom reads and checks them.
 struct FrameArgs {
   std::string frames, every = "1", size = "640x360", sheet, video;
   bool overlay = false;
 };
-void addFrameOptions(CLI::App& app, FrameArgs& args);
+void addFrameOptions(CLI::App& app, FrameArgs& args, const std::string& unit = "step");
 std::optional<FrameOptionError> frameOptionsFrom(const FrameArgs& args, FrameOptions& out);
 
 // A file the run reads ("the level", its path): no output may overwrite it.

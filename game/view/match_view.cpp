@@ -46,6 +46,12 @@ std::string teamName(const MatchState& s, int team) {
   return "team " + std::to_string(team);
 }
 
+// A line's width in pixels, estimated: DejaVu Sans averages about 0.55 of its size per character
+// in digits and lower case; 0.6 errs on the wide side.
+float textWidth(const std::string& text, float size) {
+  return 0.6f * size * static_cast<float>(text.size());
+}
+
 Color healthColor(float fraction) {
   return fraction > 0.5f ? pal::mix(pal::kAmmoPickup, pal::kHealthFull, 2.0f * fraction - 1.0f)
                          : pal::mix(pal::kHealthLow, pal::kAmmoPickup, 2.0f * fraction);
@@ -55,7 +61,10 @@ Color healthColor(float fraction) {
 
 MatchView::MatchView(const MatchState& s, int width, int height) {
   const float h = static_cast<float>(height);
-  band_ = height >= 120 ? std::clamp(std::round(0.06f * h), 14.0f, 48.0f) : 0.0f;
+  // The band and its text scale with the frame, as if it were 16:9 at most (a tall, narrow frame
+  // has no room for large text).
+  const float scale = std::min(h, 0.5625f * static_cast<float>(width));
+  band_ = scale >= 120.0f ? std::clamp(std::round(0.06f * scale), 14.0f, 48.0f) : 0.0f;
   const float margin = std::min(8.0f, 0.05f * std::min(static_cast<float>(width), h - band_));
   bounds_ = viewBounds(s);
   camera_ = render::Camera::fit(bounds_, width, height - static_cast<int>(band_), margin);
@@ -197,42 +206,57 @@ void MatchView::drawHud(render::DrawList& hud, const MatchState& s,
   std::snprintf(line, sizeof line, "tick %lld  %.1f s", static_cast<long long>(s.tick), seconds);
   hud.text({8.0f, mid}, line, text, pal::kHudText, render::HAlign::kLeft, render::VAlign::kMiddle);
   if (band_ == 0.0f) return;  // a frame too small for more
-  // Kills per team, in the team's colour.
-  int teams = 0;
-  for (const Actor& a : s.actors)
-    teams = std::max(teams, a.team + 1);
-  float x = std::round(0.27f * width);
-  for (int t = 0; t < teams && t < 4; ++t) {
-    int kills = 0;
-    for (const Actor& a : s.actors)
-      kills += a.team == t ? a.kills : 0;
-    std::snprintf(line, sizeof line, "%s %d", teamName(s, t).c_str(), kills);
-    hud.text({x, mid}, line, text, pal::team(t), render::HAlign::kLeft, render::VAlign::kMiddle);
-    x += std::round(5.5f * text);
-  }
-  // The first player's health, with a bar; without players, the caption.
+  // Laid out left to right by estimated widths (no font here): what does not fit is left out,
+  // the player's health last.
+  const float left = 8.0f + textWidth(line, text);
+  // The first player's health, with a bar, at the right; without players, the caption.
   const auto player = std::find_if(s.actors.begin(), s.actors.end(),
                                    [](const Actor& a) { return a.kind == ActorKind::player; });
   const float right = width - 8.0f;
+  float rightStart = right;
   if (player != s.actors.end()) {
     const float barW = std::round(4.0f * text), barH = std::round(0.45f * text);
-    const rc::AABB bar{{right - barW, mid - 0.5f * barH}, {right, mid + 0.5f * barH}};
-    const float fraction = std::clamp(player->health / s.tuning.health, 0.0f, 1.0f);
-    hud.rect(bar, Style::filled(pal::kHealthBack));
-    if (fraction > 0.0f)
-      hud.rect({bar.lower, {bar.lower.x + fraction * barW, bar.upper.y}},
-               Style::filled(healthColor(fraction)));
-    hud.rect(bar, Style::outlined(pal::kHudDim, 1.0f));
+    if (right - barW > left + text) {
+      const rc::AABB bar{{right - barW, mid - 0.5f * barH}, {right, mid + 0.5f * barH}};
+      const float fraction = std::clamp(player->health / s.tuning.health, 0.0f, 1.0f);
+      hud.rect(bar, Style::filled(pal::kHealthBack));
+      if (fraction > 0.0f)
+        hud.rect({bar.lower, {bar.lower.x + fraction * barW, bar.upper.y}},
+                 Style::filled(healthColor(fraction)));
+      hud.rect(bar, Style::outlined(pal::kHudDim, 1.0f));
+      rightStart = right - barW;
+    }
     if (player->alive)
       std::snprintf(line, sizeof line, "%s %.0f", player->name.c_str(),
                     static_cast<double>(player->health));
     else
       std::snprintf(line, sizeof line, "%s down", player->name.c_str());
-    hud.text({right - barW - 6.0f, mid}, line, text, pal::kHudText, render::HAlign::kRight,
-             render::VAlign::kMiddle);
-  } else if (!options.caption.empty()) {
+    if (rightStart - 6.0f - textWidth(line, text) > left + text) {
+      rightStart -= 6.0f + textWidth(line, text);
+      hud.text({rightStart + textWidth(line, text), mid}, line, text, pal::kHudText,
+               render::HAlign::kRight, render::VAlign::kMiddle);
+    }
+  } else if (!options.caption.empty() && right - textWidth(options.caption, text) > left + text) {
+    rightStart = right - textWidth(options.caption, text);
     hud.text({right, mid}, options.caption, text, pal::kHudDim, render::HAlign::kRight,
              render::VAlign::kMiddle);
+  }
+  // Kills per team, in the team's colour, between the two.
+  int teams = 0;
+  for (const Actor& a : s.actors)
+    teams = std::max(teams, a.team + 1);
+  float x = std::max(left + 2.0f * text, std::round(0.27f * width));
+  for (int t = 0; t < teams && t < 4; ++t) {
+    int kills = 0, members = 0;
+    for (const Actor& a : s.actors) {
+      kills += a.team == t ? a.kills : 0;
+      members += a.team == t;
+    }
+    if (members == 0) continue;
+    std::snprintf(line, sizeof line, "%s %d", teamName(s, t).c_str(), kills);
+    if (x + textWidth(line, text) > rightStart - text) break;
+    hud.text({x, mid}, line, text, pal::team(t), render::HAlign::kLeft, render::VAlign::kMiddle);
+    x += std::max(std::round(5.5f * text), textWidth(line, text) + text);
   }
   // The top three by kills (then fewest deaths), under the band at the right.
   std::vector<std::size_t> order(s.actors.size());

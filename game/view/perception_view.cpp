@@ -50,6 +50,28 @@ bool clipSegment(rc::Vec2& a, rc::Vec2& b, const rc::AABB& box) {
   return true;
 }
 
+// A convex polygon cut to `box` (Sutherland and Hodgman: one side of the box at a time); fewer
+// than 3 points when nothing is left.
+std::vector<rc::Vec2> clipToBox(std::vector<rc::Vec2> points, const rc::AABB& box) {
+  for (int side = 0; side < 4 && points.size() >= 3; ++side) {
+    const int axis = side / 2;
+    const bool upper = side % 2 == 1;
+    const float bound =
+        upper ? (axis == 0 ? box.upper.x : box.upper.y) : (axis == 0 ? box.lower.x : box.lower.y);
+    auto coord = [axis](rc::Vec2 p) { return axis == 0 ? p.x : p.y; };
+    auto inside = [&](rc::Vec2 p) { return upper ? coord(p) <= bound : coord(p) >= bound; };
+    std::vector<rc::Vec2> out;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const rc::Vec2 a = points[i], b = points[(i + 1) % points.size()];
+      if (inside(a)) out.push_back(a);
+      if (inside(a) != inside(b))
+        out.push_back(a + (bound - coord(a)) / (coord(b) - coord(a)) * (b - a));
+    }
+    points = std::move(out);
+  }
+  return points;
+}
+
 // A sight cone: a wedge near the apex, filled, that shows where it looks at a glance, and the
 // whole cone's outline (its two edges and the arc at its range) in thin lines cut to `box`.
 // Filling the whole cone would tint the level with every bot's cone and cost every pixel of it.
@@ -68,8 +90,10 @@ void cone(render::DrawList& list, rc::Vec2 apex, float range, float axis, float 
   std::vector<rc::Vec2> half1(near.begin(), near.begin() + static_cast<long>(mid) + 1);
   std::vector<rc::Vec2> half2{apex};
   half2.insert(half2.end(), near.begin() + static_cast<long>(mid), near.end());
-  for (const std::vector<rc::Vec2>* h : {&half1, &half2})
-    if (h->size() >= 3) list.polygon(*h, render::Style::filled(palette::fade(color, 0.22f)));
+  for (std::vector<rc::Vec2>* h : {&half1, &half2}) {
+    *h = clipToBox(std::move(*h), box);
+    if (h->size() >= 3) list.polygon(*h, render::Style::filled(palette::fade(color, 0.18f)));
+  }
   std::vector<rc::Vec2> outline{apex};
   outline.insert(outline.end(), arc.begin(), arc.end());
   outline.push_back(apex);
@@ -114,7 +138,7 @@ Perception perceptionOf(const MatchState& s, std::size_t actor) {
 void drawPerception(render::DrawList& overlay, const Perception& p, render::Color team,
                     const rc::AABB& bounds, float pixel) {
   namespace pal = palette;
-  cone(overlay, p.at, p.sight.range, p.aim, p.sight.halfAngle, bounds, team, 40.0f * pixel);
+  cone(overlay, p.at, p.sight.range, p.aim, p.sight.halfAngle, bounds, team, 30.0f * pixel);
   if (p.hearingRadius > 0.0f)
     overlay.circle(p.at, p.hearingRadius,
                    render::Style::outlined(pal::fade(pal::mix(team, pal::kSpark, 0.5f), 0.5f)));

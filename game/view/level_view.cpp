@@ -59,18 +59,29 @@ render::DrawList drawLevelStatics(const Level& level, const BuiltLevel& built,
   render::DrawList list;
   const rc::AABB bounds = level.settings.bounds;
   if (bounds.isValid() && bounds.lower.x < bounds.upper.x && bounds.lower.y < bounds.upper.y) {
-    // What the frame shows beyond the map, in up to four bands around it.
-    const rc::AABB outside[] = {
-        {visible.lower, {bounds.lower.x, visible.upper.y}},
-        {{bounds.upper.x, visible.lower.y}, visible.upper},
-        {{bounds.lower.x, visible.lower.y}, {bounds.upper.x, bounds.lower.y}},
-        {{bounds.lower.x, bounds.upper.y}, {bounds.upper.x, visible.upper.y}}};
-    for (const rc::AABB& band : outside)
-      if (band.lower.x < band.upper.x && band.lower.y < band.upper.y)
-        list.rect(band, render::Style::filled(pal::kOutside));
-    // The tile grid, when its lines would be at least 6 pixels apart (denser is noise).
+    // What the frame shows beyond the map, in up to four bands around it, each a capsule whose
+    // round ends lie beyond the frame: a capsule's distance is a few operations a pixel, a
+    // polygon's a loop over its edges, and these bands can be a third of the frame.
+    const rc::Vec2 grow{visible.upper.x - visible.lower.x, visible.upper.y - visible.lower.y};
+    auto band = [&](rc::Vec2 a, rc::Vec2 b, float radius) {
+      if (radius > 0.0f) list.capsule(a, b, radius, render::Style::filled(pal::kOutside));
+    };
+    const float left = 0.5f * (bounds.lower.x - visible.lower.x);
+    const float right = 0.5f * (visible.upper.x - bounds.upper.x);
+    const float below = 0.5f * (bounds.lower.y - visible.lower.y);
+    const float above = 0.5f * (visible.upper.y - bounds.upper.y);
+    band({visible.lower.x + left, visible.lower.y - grow.y},
+         {visible.lower.x + left, visible.upper.y + grow.y}, left);
+    band({visible.upper.x - right, visible.lower.y - grow.y},
+         {visible.upper.x - right, visible.upper.y + grow.y}, right);
+    band({visible.lower.x - grow.x, visible.lower.y + below},
+         {visible.upper.x + grow.x, visible.lower.y + below}, below);
+    band({visible.lower.x - grow.x, visible.upper.y - above},
+         {visible.upper.x + grow.x, visible.upper.y - above}, above);
+    // The tile grid, when its lines would be at least 12 pixels apart (denser is noise, and
+    // costs as much to draw as the rest of the level).
     const float tw = level.settings.tileWidth, th = level.settings.tileHeight;
-    if (tw >= 6.0f * pixel && th >= 6.0f * pixel) {
+    if (tw >= 12.0f * pixel && th >= 12.0f * pixel) {
       for (float x = bounds.lower.x + tw; x < bounds.upper.x - 0.5f * tw; x += tw)
         list.segment({x, bounds.lower.y}, {x, bounds.upper.y}, 1.0f, pal::kGrid);
       for (float y = bounds.upper.y - th; y > bounds.lower.y + 0.5f * th; y -= th)

@@ -109,7 +109,7 @@ void MatchView::drawProps(render::DrawList& list, const MatchState& s) const {
     const bool barrel = o.type == "barrel";
     Color fill = !prop ? pal::kSturdyProp : barrel ? pal::kBarrel : pal::kCrate;
     const Color edge = barrel ? pal::kBarrelEdge : pal::kCrateEdge;
-    // Darker as it is damaged: a third of the colour gone when it is about to break.
+    // Darker as it is damaged: 60% of the way to the edge's brown when it is about to break.
     if (prop && o.material.health > 0.0f)
       fill = pal::mix(fill, pal::kCrateEdge, 0.6f * (1.0f - prop->health / o.material.health));
     for (const rc::Shape& shape : o.shapes) {

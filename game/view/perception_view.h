@@ -31,8 +31,9 @@ struct Perception {
   std::vector<rc::Vec2> path;    // the route it follows, from where it is
 };
 
-// Read from the match as the bots keep it today (game/bots: sight, BotMind). Only for a living
-// actor that the autopilot drives (a bot, or a player without input).
+// Read from the match as the bots keep it today (game/bots: sight, BotMind), for a living actor.
+// A player driven by recorded input has a mind the autopilot no longer updates: its target and
+// goal are stale, its cone and rays still true.
 Perception perceptionOf(const MatchState& s, std::size_t actor);
 
 // Into the overlay, in the actor's team colour, the sight cone cut to `bounds` (the level's);

@@ -268,7 +268,13 @@ void MatchView::drawHud(render::DrawList& hud, const MatchState& s,
   const std::size_t shown = std::min<std::size_t>(3, order.size());
   if (shown == 0 || s.actors[order[0]].kills == 0) return;
   const float small = std::max(10.0f, std::round(0.5f * band));
-  const float boxW = std::round(7.0f * small), lineH = std::round(1.2f * small);
+  const float lineH = std::round(1.2f * small);
+  float boxW = std::round(7.0f * small);  // wider when names and scores need it
+  for (std::size_t k = 0; k < shown; ++k) {
+    const Actor& a = s.actors[order[k]];
+    std::snprintf(line, sizeof line, "%d/%d", a.kills, a.deaths);
+    boxW = std::max(boxW, std::round(textWidth(a.name, small) + textWidth(line, small) + small));
+  }
   // Beside the level when the frame has room there, else over its top-right corner.
   const float levelRight = camera_.worldToPixel(bounds_.upper).x;
   const float boxRight = width - 4.0f;

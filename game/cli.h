@@ -16,7 +16,8 @@ int runSim(std::span<const std::string_view> args);
 // `ricochet level LEVEL.tmj [--json]`: reads a Tiled level, builds it, prints what it holds.
 int runLevel(std::span<const std::string_view> args);
 
-// `ricochet play LEVEL.tmj [--bots K] [--seed S] [--ticks N] [--json]`: a headless match.
+// `ricochet play LEVEL.tmj [--bots K] [--seed S] [--ticks N] [--json] [--frames DIR ...]`: a
+// headless match, rendered with --frames.
 int runPlay(std::span<const std::string_view> args);
 
 // `ricochet replay FILE [--verify] ...` and `ricochet replay --batch ...`: recorded sessions

@@ -1,27 +1,20 @@
 // `ricochet sim SCENE.json --steps N [--integrator NAME] [--out STATE.json]
 //                [--trace BODY,BODY,... --csv FILE]`
 // Steps a scene file and writes the final state (and a trajectory of chosen bodies).
-#include <spawn.h>
-#include <sys/wait.h>
-
 #include <algorithm>
 #include <charconv>
 #include <cstdio>
 #include <exception>
-#include <memory>
 #include <string>
 #include <vector>
 
 #include "game/cli.h"
 #include "game/scene.h"
+#include "game/view/frame_output.h"
 #include "physics/contact_solver.h"
 
 #ifdef RICOCHET_HAS_RENDER
-#include "game/scene_view.h"
-#include "render/contact_sheet.h"
-#include "render/frame_writer.h"
-#include "render/png.h"
-#include "render/renderer.h"
+#include "game/view/scene_view.h"
 #endif
 
 namespace game {
@@ -63,38 +56,6 @@ bool whole(const std::string& text, long least, long& out) {
   return ec == std::errc() && end == text.data() + text.size() && out >= least;
 }
 
-#ifdef RICOCHET_HAS_RENDER
-// The frames as a video through ffmpeg, if it is installed (never required): run without a
-// shell, so no path is ever interpreted. Returns what happened, for the log.
-std::string encodeVideo(const std::string& dir, double fps, const std::string& out) {
-  char rate[32];
-  std::snprintf(rate, sizeof rate, "%.6g", fps);
-  const std::string pattern = dir + "/frame_%06d.png";
-  const bool gif = out.size() >= 4 && out.compare(out.size() - 4, 4, ".gif") == 0;
-  std::vector<std::string> args = {"ffmpeg",     "-y", "-loglevel", "error",
-                                   "-framerate", rate, "-i",        pattern};
-  if (gif) {
-    args.insert(args.end(), {"-vf", "split[a][b];[a]palettegen[p];[b][p]paletteuse"});
-  } else {
-    // yuv420p needs even sizes; pad by a pixel when a frame's side is odd.
-    args.insert(args.end(),
-                {"-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-pix_fmt", "yuv420p", "-c:v", "libx264"});
-  }
-  args.push_back(out);
-  std::vector<char*> argv;
-  for (std::string& a : args)
-    argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  if (posix_spawnp(&pid, "ffmpeg", nullptr, nullptr, argv.data(), environ) != 0)
-    return "--video: ffmpeg is not installed (Debian package ffmpeg); the frames are in " + dir;
-  int status = 0;
-  if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    return "--video: ffmpeg failed to write " + out + "; the frames are in " + dir;
-  return "video in " + out;
-}
-#endif
-
 // Body indices from a list of indices or names.
 bool resolveTrace(const std::string& list, const SceneDesc& scene, std::vector<std::size_t>& out,
                   std::string& error) {
@@ -124,10 +85,11 @@ bool resolveTrace(const std::string& list, const SceneDesc& scene, std::vector<s
 }  // namespace
 
 int runSim(std::span<const std::string_view> args) {
-  std::string scenePath, outPath, csvPath, trace, integrator, framesDir, sheetPath, videoPath;
-  long steps = -1, every = 1;
-  int width = 640, height = 360;
-  bool overlay = true, profile = false;
+  std::string scenePath, outPath, csvPath, trace, integrator;
+  long steps = -1;
+  FrameOptions frames;
+  frames.overlay = true;
+  bool profile = false;
   long lanes = 0;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string_view a = args[i];
@@ -152,13 +114,13 @@ int runSim(std::span<const std::string_view> args) {
     } else if (a == "--integrator") {
       if (!value(integrator)) return usageError("--integrator needs a name");
     } else if (a == "--frames") {
-      if (!value(framesDir)) return usageError("--frames needs a directory");
+      if (!value(frames.directory)) return usageError("--frames needs a directory");
     } else if (a == "--sheet") {
-      if (!value(sheetPath)) return usageError("--sheet needs a file name");
+      if (!value(frames.sheet)) return usageError("--sheet needs a file name");
     } else if (a == "--video") {
-      if (!value(videoPath)) return usageError("--video needs a file name");
+      if (!value(frames.video)) return usageError("--video needs a file name");
     } else if (a == "--no-overlay") {
-      overlay = false;
+      frames.overlay = false;
     } else if (a == "--profile") {
       profile = true;
     } else if (a == "--lanes") {
@@ -167,19 +129,12 @@ int runSim(std::span<const std::string_view> args) {
         return usageError("--lanes must be 4 or 8, got '" + v + "'");
     } else if (a == "--every") {
       std::string v;
-      if (!value(v) || !whole(v, 1, every))
-        return usageError("--every must be a whole number >= 1, got '" + v + "'");
+      if (!value(v)) return usageError("--every must be a whole number >= 1, got ''");
+      if (const auto e = parseEvery(v, frames.every)) return usageError(*e);
     } else if (a == "--size") {
       std::string v;
       if (!value(v)) return usageError("--size needs WxH");
-      const std::size_t x = v.find('x');
-      const auto [e1, c1] = std::from_chars(v.data(), v.data() + std::min(x, v.size()), width);
-      const auto [e2, c2] = x == std::string::npos
-                                ? std::from_chars(v.data(), v.data(), height)
-                                : std::from_chars(v.data() + x + 1, v.data() + v.size(), height);
-      if (x == std::string::npos || c1 != std::errc() || c2 != std::errc() ||
-          e2 != v.data() + v.size() || width < 16 || height < 16 || width > 8192 || height > 8192)
-        return usageError("--size must be WxH with 16 to 8192 pixels each, got '" + v + "'");
+      if (const auto e = parseSize(v, frames.width, frames.height)) return usageError(*e);
     } else if (!a.empty() && a[0] == '-') {
       return usageError("unknown option '" + std::string(a) + "'");
     } else if (scenePath.empty()) {
@@ -191,16 +146,14 @@ int runSim(std::span<const std::string_view> args) {
   if (scenePath.empty()) return usageError("no scene file");
   if (steps < 0) return usageError("--steps is required");
   if (trace.empty() != csvPath.empty()) return usageError("--trace and --csv go together");
-  if (framesDir.empty() && !sheetPath.empty()) return usageError("--sheet needs --frames");
-  if (framesDir.empty() && !videoPath.empty()) return usageError("--video needs --frames");
+  const RunInput inputs[] = {{"the scene", scenePath}};
+  if (const auto e = checkFrameOptions(frames, inputs)) {
+    if (e->exitCode == 2) return usageError(e->message);
+    std::fprintf(stderr, "ricochet sim: %s\n", e->message.c_str());
+    return e->exitCode;
+  }
   if (lanes == 8 && rc::ContactSolver::widestLanes() != 8)
     return usageError("--lanes 8 needs a processor with AVX2, which this one lacks");
-#ifndef RICOCHET_HAS_RENDER
-  if (!framesDir.empty())
-    return usageError(
-        "--frames: this ricochet was built without the renderer "
-        "(-DRICOCHET_RENDER=OFF)");
-#endif
 
   try {
     SceneDesc scene = loadScene(scenePath);
@@ -228,29 +181,16 @@ int runSim(std::span<const std::string_view> args) {
         csv += line;
       }
     };
-#ifdef RICOCHET_HAS_RENDER
     // Frames: the camera fitted once to the scene as it starts, so the view does not jump.
-    std::unique_ptr<render::Renderer> renderer;
-    std::unique_ptr<render::FrameWriter> writer;
-    render::Camera camera;
-    std::vector<render::Image> sheet;
-    const long sheetEvery = std::max(1L, (steps / every + 1 + 23) / 24);
+    FrameOutput output(frames, "ricochet sim", steps, static_cast<double>(scene.dt));
+#ifdef RICOCHET_HAS_RENDER
     ViewOptions view;
-    view.overlay = overlay;
+    view.overlay = frames.overlay;
     view.caption = scenePath;
+    const render::Camera camera = cameraForWorld(*built.world, frames.width, frames.height);
     auto frame = [&](long step) {
-      if (!writer || step % every != 0) return;
-      render::Image image = renderer->render(drawWorld(*built.world, step, view), camera);
-      if (!sheetPath.empty() && (step / every) % sheetEvery == 0) sheet.push_back(image);
-      writer->submit(step / every, std::move(image));
+      if (output.due(step)) output.add(step, drawWorld(*built.world, step, view), camera);
     };
-    if (!framesDir.empty()) {
-      renderer = std::make_unique<render::Renderer>();
-      render::FrameWriterOptions options;
-      options.directory = framesDir;
-      writer = std::make_unique<render::FrameWriter>(options);
-      camera = cameraForWorld(*built.world, width, height);
-    }
 #else
     auto frame = [](long) {};
 #endif
@@ -273,19 +213,7 @@ int runSim(std::span<const std::string_view> args) {
       if (steps >= 10000 && k % (steps / 10) == 0)
         std::fprintf(stderr, "ricochet sim: %ld of %ld steps\n", k, steps);
     }
-#ifdef RICOCHET_HAS_RENDER
-    if (writer) {
-      writer->finish();
-      if (!sheetPath.empty()) render::writePng(sheetPath, render::contactSheet(sheet));
-      std::fprintf(stderr, "ricochet sim: %lld frames in %s\n",
-                   static_cast<long long>(writer->stats().framesWritten), framesDir.c_str());
-      if (!videoPath.empty()) {
-        const double fps = 1.0 / (static_cast<double>(scene.dt) * static_cast<double>(every));
-        const std::string result = encodeVideo(framesDir, fps, videoPath);
-        std::fprintf(stderr, "ricochet sim: %s\n", result.c_str());
-      }
-    }
-#endif
+    output.finish();
     const SceneState state = captureState(scene, built, static_cast<int>(steps));
     if (!outPath.empty()) writeFileAtomically(outPath, stateToJson(state));
     if (!csvPath.empty()) writeFileAtomically(csvPath, csv);
@@ -300,6 +228,9 @@ int runSim(std::span<const std::string_view> args) {
           sum.continuous * perStep, sum.refit * perStep, sum.sensors * perStep, sum.sleep * perStep,
           sum.total * perStep, built.world->profile().lanes);
     return 0;
+  } catch (const FrameOutputError& e) {
+    std::fprintf(stderr, "ricochet sim: %s\n", e.what());
+    return 1;
   } catch (const SceneError& e) {
     std::fprintf(stderr, "ricochet sim: %s\n", e.what());
     return 1;

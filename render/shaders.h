@@ -1,6 +1,7 @@
 // GLSL 4.50 sources of the renderer's three programs.
 //
-// Shapes: one instance per Shape (draw_list.h), drawn as a quad around its bounds; the fragment
+// Shapes: one instance per Shape (draw_list.h), drawn as a quad around its bounds (capsules,
+// segments and arrows: an oriented quad along the shaft); the fragment
 // shader measures the signed distance from the pixel to the shape's edge (in pixels, negative
 // inside) and turns it into coverage over a one-pixel ramp, which is the anti-aliasing. Text:
 // one instance per glyph, sampling the font's distance-field atlas the same way. Sprites: one
@@ -37,9 +38,19 @@ void main() {
   vec2 corner = vec2(float(gl_VertexID & 1), float(gl_VertexID >> 1));
   float padPixels = max(iSizes.y, iKind.x == 3u ? 0.5 * iSizes.w : 0.0) + 1.0;
   float pad = iSizes.x + padPixels / uPixelsPerUnit;
-  vec2 lo = min(iA, iB) - vec2(pad);
-  vec2 hi = max(iA, iB) + vec2(pad);
-  vPos = mix(lo, hi, corner);
+  vec2 e = iB - iA;
+  float len = length(e);
+  if ((iKind.x == 1u || iKind.x == 3u) && len > 0.0) {
+    // Capsules, segments and arrows: a quad along the shaft, so that a long slanted line costs
+    // the pixels around it, not all those of its bounding box.
+    vec2 u = e / len;
+    vec2 n = vec2(-u.y, u.x);
+    vPos = iA - pad * u + corner.x * (e + 2.0 * pad * u) + (2.0 * corner.y - 1.0) * pad * n;
+  } else {
+    vec2 lo = min(iA, iB) - vec2(pad);
+    vec2 hi = max(iA, iB) + vec2(pad);
+    vPos = mix(lo, hi, corner);
+  }
   vec2 pixel = vPos * uToPixel.xy + uToPixel.zw;
   gl_Position = vec4(pixel / uViewport * 2.0 - 1.0, 0.0, 1.0);
   vA = iA;

@@ -1,8 +1,12 @@
-// `ricochet play LEVEL.tmj [--bots K] [--seed S] [--ticks N] [--weapons FILE] [--json]`
+// `ricochet play LEVEL.tmj [--bots K] [--seed S] [--ticks N] [--weapons FILE] [--json]
+//                         [--record FILE] [--input FILE|-]
+//                         [--frames DIR --every K --size WxH --overlay --sheet FILE --video FILE]`
 // A headless match on a level, the players on autopilot: prints one summary line (ticks, kills,
 // shots, explosions, pickups taken, crashes, exits, suicides, each team's score, the final hash,
-// ticks per second of wall time). What a recording will replay,
-// and what the determinism tests compare across builds.
+// ticks per second of wall time). What a recording will replay, and what the determinism tests
+// compare across builds. --record writes the match as it plays (game/session/recording.h),
+// --input takes the players' controls from a script; with --frames the match is rendered
+// (game/view/match_frames.h); progress goes to stderr on long runs.
 #include <CLI/CLI.hpp>
 
 #include <chrono>
@@ -16,11 +20,13 @@
 
 #include "game/cli.h"
 #include "game/commands/command_line.h"
+#include "game/commands/progress.h"
 #include "game/level/level_error.h"
 #include "game/level/level_loader.h"
 #include "game/match/match.h"
 #include "game/session/input_script.h"
 #include "game/session/recording.h"
+#include "game/view/match_frames.h"
 #include "game/weapons/weapon_table.h"
 
 namespace game {
@@ -58,7 +64,26 @@ int runPlay(std::span<const std::string_view> args) {
   app.add_option("--keyframe-every", keyframeEvery,
                  "with --record: ticks between keyframes (default 300, 5 s)")
       ->check(CLI::Range(1, 1 << 20));
+  FrameArgs frameArgs;
+  addFrameOptions(app, frameArgs, "tick");
   if (const std::optional<int> exit = parseCommandLine(app, "ricochet play", args)) return *exit;
+  FrameOptions frameOptions;
+  std::vector<RunInput> runInputs = {{"the level", levelPath}, {"the weapon table", weaponsPath}};
+  if (!inputPath.empty() && inputPath != "-") runInputs.push_back({"the input script", inputPath});
+  auto frameError = frameOptionsFrom(frameArgs, frameOptions);
+  if (!frameError) frameError = checkFrameOptions(frameOptions, runInputs);
+  if (frameError) {
+    std::fprintf(stderr, "ricochet play: %s%s\n", frameError->message.c_str(),
+                 frameError->exitCode == 2 ? " (try ricochet play --help)" : "");
+    return frameError->exitCode;
+  }
+  if (!recordPath.empty())
+    for (const RunInput& input : runInputs)
+      if (sameFile(recordPath, input.path)) {
+        std::fprintf(stderr, "ricochet play: --record %s is %s, an input of the run\n",
+                     recordPath.c_str(), input.what.c_str());
+        return kExitUsage;
+      }
 
   try {
     MatchConfig config;
@@ -84,18 +109,16 @@ int runPlay(std::span<const std::string_view> args) {
     }
     std::optional<Recorder> recorder;
     if (!recordPath.empty()) {
-      for (const std::string& input : {levelPath, weaponsPath, inputPath})
-        if (!input.empty() && input != "-" && sameFile(recordPath, input)) {
-          std::fprintf(stderr, "ricochet play: --record %s: that is an input of the run (%s)\n",
-                       recordPath.c_str(), input.c_str());
-          return kExitUsage;
-        }
       RecordingHeader header = headerFor(match, levelPath, recordPath);
       header.keyframeEvery = keyframeEvery;
       recorder.emplace(recordPath, header);
     }
+    MatchFrames frames(frameOptions, "ricochet play", match.state(), static_cast<long>(ticks),
+                       levelPath);
+    Progress progress("ricochet play", "tick", ticks);
     const auto start = std::chrono::steady_clock::now();
     std::size_t shots = 0, explosions = 0, crashes = 0;
+    frames.update(match.state());
     for (long long t = 0; t < ticks; ++t) {
       if (script) {
         match.tick(script->inputsFor(t));
@@ -103,17 +126,18 @@ int runPlay(std::span<const std::string_view> args) {
         match.tick();
       }
       if (recorder) recorder->afterTick(match);
+      frames.update(match.state());
       // Trigger pulls: a shotgun's pellets count once.
       for (const Shot& shot : match.state().shots)
         shots += shot.pellet == 0;
       explosions += match.state().explosions.size();
       crashes += match.state().crashes.size();
-      if (ticks >= 60000 && t % 60000 == 0 && t > 0)
-        std::fprintf(stderr, "ricochet play: tick %lld of %lld\n", t, ticks);
+      progress.update(t + 1, frameOptions.enabled() ? frames.framesAdded() : -1);
     }
     if (recorder) recorder->finish(match);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    frames.finish();  // the last frames, the sheet and the video: after the clock stops
     int kills = 0, deaths = 0, exits = 0, suicides = 0, pickups = 0;
     for (const Actor& a : match.state().actors) {
       kills += a.kills;
@@ -152,6 +176,9 @@ int runPlay(std::span<const std::string_view> args) {
           exits, suicides, scores.empty() ? "-" : scores.c_str(), hash, rate);
     }
     return 0;
+  } catch (const FrameOutputError& e) {
+    std::fprintf(stderr, "ricochet play: %s\n", e.what());
+    return kExitBadInput;
   } catch (const InputScriptError& e) {
     std::fprintf(stderr, "ricochet play: %s\n", e.what());
     return kExitBadInput;

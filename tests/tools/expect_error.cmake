@@ -1,7 +1,8 @@
-# Runs `${PROGRAM} ${ARG1} ${ARG2}` and checks that it fails the way a user is promised: exit
-# code ${CODE}, nothing on stdout, exactly one line on stderr, matching ${MATCH}.
-execute_process(COMMAND ${PROGRAM} ${ARG1} ${ARG2} RESULT_VARIABLE code OUTPUT_VARIABLE out
-                ERROR_VARIABLE err)
+# Runs `${PROGRAM} ${ARG1} ${ARG2} ... ${ARG8}` (unset ones left out) and checks that it fails
+# the way a user is promised: exit code ${CODE}, nothing on stdout, exactly one line on stderr,
+# matching ${MATCH}.
+execute_process(COMMAND ${PROGRAM} ${ARG1} ${ARG2} ${ARG3} ${ARG4} ${ARG5} ${ARG6} ${ARG7} ${ARG8}
+                RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT code EQUAL CODE)
   message(FATAL_ERROR "exit code ${code}, expected ${CODE}; stderr: ${err}")
 endif()

@@ -1,10 +1,12 @@
-#include "game/scene_view.h"
+#include "game/view/scene_view.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <iterator>
 #include <string>
 #include <vector>
+
+#include "game/view/shape_draw.h"
 
 namespace game {
 namespace {
@@ -33,43 +35,6 @@ Color bodyColor(const rc::World& world, rc::BodyId id) {
     c.b = static_cast<std::uint8_t>(c.b / 2);
   }
   return c;
-}
-
-void drawShape(render::DrawList& list, const rc::Shape& s, const rc::Transform& xf,
-               const render::Style& style) {
-  switch (s.type) {
-    case rc::ShapeType::circle:
-      list.circle(rc::apply(xf, s.circle.center), s.circle.radius, style);
-      break;
-    case rc::ShapeType::box: {
-      const rc::Vec2 c = s.box.center, h = s.box.halfExtents;
-      const rc::Vec2 corners[4] = {
-          rc::apply(xf, c + rc::Vec2{-h.x, -h.y}), rc::apply(xf, c + rc::Vec2{h.x, -h.y}),
-          rc::apply(xf, c + rc::Vec2{h.x, h.y}), rc::apply(xf, c + rc::Vec2{-h.x, h.y})};
-      list.polygon(corners, style);
-      break;
-    }
-    case rc::ShapeType::polygon: {
-      std::vector<rc::Vec2> points;
-      for (int i = 0; i < s.polygon.count; ++i)
-        points.push_back(rc::apply(xf, s.polygon.vertices[i]));
-      list.polygon(points, style, s.polygon.radius);
-      break;
-    }
-    case rc::ShapeType::capsule:
-      list.capsule(rc::apply(xf, s.capsule.center1), rc::apply(xf, s.capsule.center2),
-                   s.capsule.radius, style);
-      break;
-    case rc::ShapeType::segment:
-      list.segment(rc::apply(xf, s.segment.point1), rc::apply(xf, s.segment.point2), 2.0f,
-                   style.fill.a > 0 ? style.fill : style.stroke);
-      break;
-    case rc::ShapeType::chainSegment:
-      list.segment(rc::apply(xf, s.chainSegment.segment.point1),
-                   rc::apply(xf, s.chainSegment.segment.point2), 2.0f,
-                   style.fill.a > 0 ? style.fill : style.stroke);
-      break;
-  }
 }
 
 }  // namespace

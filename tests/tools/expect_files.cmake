@@ -1,0 +1,33 @@
+# Runs a command that writes files and checks what it leaves: exit code 0, every file of FILES
+# present and not empty, none of ABSENT present. ARGS, FILES and ABSENT are lists separated by
+# '|' (a ';' would split the test's command line). Everything under CLEAN is removed first, so
+# that files from an earlier run prove nothing.
+string(REPLACE "|" ";" args "${ARGS}")
+string(REPLACE "|" ";" files "${FILES}")
+string(REPLACE "|" ";" absent "${ABSENT}")
+if(CLEAN)
+  file(REMOVE_RECURSE "${CLEAN}")
+endif()
+execute_process(COMMAND ${PROGRAM} ${args} RESULT_VARIABLE code OUTPUT_VARIABLE out
+                ERROR_VARIABLE err)
+if(NOT code EQUAL 0)
+  message(FATAL_ERROR "exit code ${code}, expected 0; stderr: ${err}")
+endif()
+foreach(f IN LISTS files)
+  if(NOT EXISTS "${f}")
+    message(FATAL_ERROR "missing: ${f}; stderr: ${err}")
+  endif()
+  file(SIZE "${f}" size)
+  if(size EQUAL 0)
+    message(FATAL_ERROR "empty: ${f}")
+  endif()
+endforeach()
+foreach(f IN LISTS absent)
+  if(EXISTS "${f}")
+    message(FATAL_ERROR "should not exist: ${f}")
+  endif()
+endforeach()
+if(MATCH AND NOT err MATCHES "${MATCH}")
+  message(FATAL_ERROR "stderr does not match '${MATCH}': ${err}")
+endif()
+message(STATUS "ok: ${out}${err}")

@@ -27,4 +27,7 @@ int runReplay(std::span<const std::string_view> args);
 // `ricochet info FILE [--json]`: what a recording holds and whether it is whole.
 int runInfo(std::span<const std::string_view> args);
 
+// `ricochet render FILE --tick T -o out.png`: one tick of a recording as a picture.
+int runRender(std::span<const std::string_view> args);
+
 }  // namespace game

@@ -16,6 +16,7 @@ constexpr const char* kUsage =
     "  play      play a headless match on a level, bots against the autopilot (--record)\n"
     "  replay    play a recorded session back, verify it, or verify many (--batch)\n"
     "  info      say what a recording holds and whether it is whole\n"
+    "  render    draw one tick of a recording as a PNG\n"
     "\n"
     "ricochet <command> --help shows a command's options.\n";
 
@@ -39,6 +40,7 @@ int main(int argc, char** argv) {
   if (command == "play") return game::runPlay(rest);
   if (command == "replay") return game::runReplay(rest);
   if (command == "info") return game::runInfo(rest);
+  if (command == "render") return game::runRender(rest);
   std::fprintf(stderr, "ricochet: unknown command '%.*s' (try ricochet --help)\n",
                static_cast<int>(command.size()), command.data());
   return 2;

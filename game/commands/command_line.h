@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -11,6 +12,8 @@
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "game/match/input.h"
 
 namespace game {
 
@@ -41,6 +44,23 @@ inline std::optional<int> parseCommandLine(CLI::App& app, const char* command,
     return kExitUsage;
   }
   return std::nullopt;
+}
+
+// A tick count, or seconds with an "s" ("90s", "1.5s"), at 60 ticks per second.
+inline std::optional<std::int64_t> parseTick(const std::string& text) {
+  try {
+    std::size_t used = 0;
+    if (!text.empty() && text.back() == 's') {
+      const double seconds = std::stod(text.substr(0, text.size() - 1), &used);
+      if (used + 1 != text.size() || !(seconds >= 0.0) || seconds > 1e9) return std::nullopt;
+      return static_cast<std::int64_t>(seconds * kTicksPerSecond + 0.5);
+    }
+    const long long ticks = std::stoll(text, &used);
+    if (used != text.size() || ticks < 0) return std::nullopt;
+    return ticks;
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
 }
 
 // Whether two paths name one file (the same inode, through links and relative paths alike): an

@@ -1,4 +1,5 @@
-// `ricochet replay FILE [--verify] [--synctest] [--from T] [--to T] [--level FILE] [--json]`
+// `ricochet replay FILE [--verify] [--synctest] [--from T] [--to T] [--level FILE] [--json]
+//                  [--frames DIR --every K --size WxH --overlay --sheet FILE --video FILE]`
 // re-simulates a recorded session headless and prints one summary line; `--verify` checks every
 // recorded hash and names what diverged first. `ricochet replay --batch DIR_OR_LIST --shard i/n
 // --jobs J` verifies many sessions, one JSON line each (game/session/batch.h).
@@ -7,6 +8,7 @@
 #include <chrono>
 #include <cinttypes>
 #include <cstdio>
+#include <memory>
 #include <string>
 
 #include "game/cli.h"
@@ -14,26 +16,10 @@
 #include "game/session/batch.h"
 #include "game/session/recording.h"
 #include "game/session/replay.h"
+#include "game/view/match_frames.h"
 
 namespace game {
 namespace {
-
-// A tick count, or seconds with an "s" ("90s", "1.5s"), at 60 ticks per second.
-std::optional<std::int64_t> parseTick(const std::string& text) {
-  try {
-    std::size_t used = 0;
-    if (!text.empty() && text.back() == 's') {
-      const double seconds = std::stod(text.substr(0, text.size() - 1), &used);
-      if (used + 1 != text.size() || !(seconds >= 0.0) || seconds > 1e9) return std::nullopt;
-      return static_cast<std::int64_t>(seconds * kTicksPerSecond + 0.5);
-    }
-    const long long ticks = std::stoll(text, &used);
-    if (used != text.size() || ticks < 0) return std::nullopt;
-    return ticks;
-  } catch (const std::exception&) {
-    return std::nullopt;
-  }
-}
 
 int exitCodeOf(Verdict v) {
   switch (v) {
@@ -77,7 +63,23 @@ int runReplay(std::span<const std::string_view> args) {
   app.add_option("--shard", shardText, "with --batch: this machine's share i/n (default 0/1)");
   app.add_option("--jobs", jobs, "with --batch: sessions replayed at once (default 1)")
       ->check(CLI::Range(1, 256));
+  FrameArgs frameArgs;
+  addFrameOptions(app, frameArgs, "tick");
   if (const std::optional<int> exit = parseCommandLine(app, "ricochet replay", args)) return *exit;
+  FrameOptions frameOptions;
+  {
+    std::vector<RunInput> inputs = {{"the recording", path}};
+    if (!levelPath.empty()) inputs.push_back({"the level", levelPath});
+    auto frameError = frameOptionsFrom(frameArgs, frameOptions);
+    if (!frameError) frameError = checkFrameOptions(frameOptions, inputs);
+    if (!frameError && frameOptions.enabled() && !batch.empty())
+      frameError = FrameOptionError{kExitUsage, "--frames is for one recording, not --batch"};
+    if (frameError) {
+      std::fprintf(stderr, "ricochet replay: %s%s\n", frameError->message.c_str(),
+                   frameError->exitCode == kExitUsage ? " (try ricochet replay --help)" : "");
+      return frameError->exitCode;
+    }
+  }
 
   auto usage = [](const std::string& what) {
     std::fprintf(stderr, "ricochet replay: %s (try ricochet replay --help)\n", what.c_str());
@@ -112,6 +114,18 @@ int runReplay(std::span<const std::string_view> args) {
 
   try {
     const Recording recording = loadRecording(path);
+    // Frames from the first tick played on (the view made from the match as it is there).
+    std::unique_ptr<MatchFrames> frames;
+    if (frameOptions.enabled()) {
+      const std::int64_t last = std::min(options.to.value_or(recording.ticks), recording.ticks);
+      const std::int64_t first = std::min(options.from.value_or(0), last);
+      options.onTick = [&, last, first](const Match& m) {
+        if (!frames)
+          frames = std::make_unique<MatchFrames>(frameOptions, "ricochet replay", m.state(),
+                                                 static_cast<long>(last - first), path);
+        frames->update(m.state());
+      };
+    }
     options.onProgress = [&](std::int64_t tick, std::int64_t last) {
       if (last >= 60000)
         std::fprintf(stderr, "ricochet replay: tick %lld of %lld\n", static_cast<long long>(tick),
@@ -121,6 +135,7 @@ int runReplay(std::span<const std::string_view> args) {
     const ReplayReport report = replayRecording(recording, options);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (frames) frames->finish();
     const std::int64_t played = report.end - report.start;
     const double rate = seconds > 0.0 ? static_cast<double>(played) / seconds : 0.0;
     if (json) {
@@ -128,9 +143,9 @@ int runReplay(std::span<const std::string_view> args) {
       rusage resources{};
       getrusage(RUSAGE_SELF, &resources);
       std::string line = replayJson(path, report, seconds);
-      line.insert(line.size() - 1, ", \"ticks_per_second\": " +
-                                       std::to_string(static_cast<long long>(rate)) +
-                                       ", \"peak_rss_kib\": " + std::to_string(resources.ru_maxrss));
+      line.insert(line.size() - 1,
+                  ", \"ticks_per_second\": " + std::to_string(static_cast<long long>(rate)) +
+                      ", \"peak_rss_kib\": " + std::to_string(resources.ru_maxrss));
       std::printf("%s\n", line.c_str());
     } else {
       std::printf("replay %s ticks %lld-%lld hash %016" PRIx64
@@ -145,6 +160,9 @@ int runReplay(std::span<const std::string_view> args) {
                    verdictName(report.verdict), report.message.c_str());
     return exitCodeOf(report.verdict);
   } catch (const RecordingError& e) {
+    std::fprintf(stderr, "ricochet replay: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const FrameOutputError& e) {
     std::fprintf(stderr, "ricochet replay: %s\n", e.what());
     return kExitBadInput;
   }

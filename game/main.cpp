@@ -18,7 +18,7 @@ constexpr const char* kUsage =
     "  info      say what a recording holds and whether it is whole\n"
     "  render    draw one tick of a recording as a PNG\n"
     "\n"
-    "ricochet <command> --help shows a command's options.\n";
+    "ricochet <command> --help (or ricochet help <command>) shows a command's options.\n";
 
 }  // namespace
 
@@ -31,6 +31,17 @@ int main(int argc, char** argv) {
   if (args[0] == "--version") {
     std::puts("ricochet 0.1.0");
     return 0;
+  }
+  // `ricochet help` and `ricochet help COMMAND`, as git and cargo take them.
+  static constexpr std::string_view kHelp[] = {"--help"};
+  std::vector<std::string_view> helpArgs;
+  if (args[0] == "help") {
+    if (args.size() == 1) {
+      std::fputs(kUsage, stdout);
+      return 0;
+    }
+    helpArgs = {args[1], kHelp[0]};
+    args = helpArgs;
   }
   std::string_view command = args[0];
   std::span<const std::string_view> rest(args.data() + 1, args.size() - 1);

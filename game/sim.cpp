@@ -5,10 +5,12 @@
 #include <charconv>
 #include <cstdio>
 #include <exception>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "game/cli.h"
+#include "game/commands/command_line.h"
 #include "game/scene.h"
 #include "game/view/frame_output.h"
 #include "physics/contact_solver.h"
@@ -20,40 +22,9 @@
 namespace game {
 namespace {
 
-constexpr const char* kSimUsage =
-    "usage: ricochet sim SCENE.json --steps N [--integrator NAME] [--out STATE.json]\n"
-    "                    [--trace BODY,BODY,... --csv FILE]\n"
-    "\n"
-    "Steps the scene N times at its dt and prints one summary line (steps, simulated time,\n"
-    "state hash, milliseconds per step) on stdout.\n"
-    "  --integrator NAME  explicit-euler, semi-implicit-euler, verlet or rk4 (overrides the\n"
-    "                     scene's setting)\n"
-    "  --out FILE         the final state as JSON (every body's position, angle, velocities)\n"
-    "  --trace LIST       bodies to record every step, by index or name, comma-separated\n"
-    "  --csv FILE         where the trace goes: step,time,body,x,y,angle,vx,vy,w\n"
-    "  --frames DIR       render frame_000000.png, ... into DIR (step 0 and every K-th step)\n"
-    "  --every K          with --frames: every K-th step (default 1)\n"
-    "  --size WxH         with --frames: frame size in pixels (default 640x360)\n"
-    "  --no-overlay       with --frames: without the debug overlay (AABBs, contacts,\n"
-    "                     velocities)\n"
-    "  --sheet FILE       with --frames: also a contact sheet of up to 24 of the frames\n"
-    "  --video FILE       with --frames: also an MP4 (or a GIF, by the name) of the frames,\n"
-    "                     if ffmpeg is installed; without it a warning, and the frames stay\n"
-    "  --profile          also print the step's phases, milliseconds per step on average\n"
-    "                     (after the summary line), and the contact solver's batch width\n"
-    "  --lanes N          the contact solver's batch width, 4 or 8 (8: AVX2; the default is\n"
-    "                     the widest the processor has); the hash is the same at either\n"
-    "Exit codes: 0 done, 1 bad scene or unwritable output, 2 bad command line.\n";
-
 int usageError(const std::string& what) {
   std::fprintf(stderr, "ricochet sim: %s (try ricochet sim --help)\n", what.c_str());
   return 2;
-}
-
-// A whole decimal number >= least, the whole text.
-bool whole(const std::string& text, long least, long& out) {
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
-  return ec == std::errc() && end == text.data() + text.size() && out >= least;
 }
 
 // Body indices from a list of indices or names.
@@ -85,66 +56,43 @@ bool resolveTrace(const std::string& list, const SceneDesc& scene, std::vector<s
 }  // namespace
 
 int runSim(std::span<const std::string_view> args) {
+  CLI::App app{
+      "Steps a scene file N times at its dt and prints one summary line (steps, simulated\n"
+      "time, state hash, milliseconds per step) on stdout. Scene files: game/README.md.\n"
+      "Exit codes: 0 done, 1 bad scene or unwritable output, 2 bad command line.",
+      "ricochet sim"};
   std::string scenePath, outPath, csvPath, trace, integrator;
   long steps = -1;
+  bool profile = false, noOverlay = false;
+  int lanes = 0;
+  app.add_option("scene", scenePath, "the scene file (.json)")->required();
+  app.add_option("--steps", steps, "steps to take (required)")
+      ->required()
+      ->check(CLI::Range(0L, 1L << 40));
+  app.add_option("--integrator", integrator,
+                 "explicit-euler, semi-implicit-euler, verlet or rk4 (overrides the scene's)");
+  app.add_option("--out", outPath,
+                 "the final state as JSON (every body's position, angle, "
+                 "velocities)");
+  app.add_option("--trace", trace,
+                 "bodies to record every step, by index or name, comma-separated");
+  app.add_option("--csv", csvPath, "where the trace goes: step,time,body,x,y,angle,vx,vy,w");
+  app.add_flag("--profile", profile,
+               "also print the step's phases in milliseconds per step (after the summary line) "
+               "and the contact solver's batch width");
+  app.add_option("--lanes", lanes,
+                 "the contact solver's batch width, 4 or 8 (8: AVX2; default the widest the "
+                 "processor has); the hash is the same at either")
+      ->check(CLI::IsMember({4, 8}));
+  FrameArgs frameArgs;
+  addFrameOptions(app, frameArgs, "step");
+  app.remove_option(app.get_option("--overlay"));  // a scene's overlay is on unless refused
+  app.add_flag("--no-overlay", noOverlay,
+               "with --frames: without the debug overlay (AABBs, contacts, velocities)");
+  if (const std::optional<int> exit = parseCommandLine(app, "ricochet sim", args)) return *exit;
   FrameOptions frames;
-  frames.overlay = true;
-  bool profile = false;
-  long lanes = 0;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string_view a = args[i];
-    auto value = [&](std::string& into) {
-      if (i + 1 >= args.size()) return false;
-      into = std::string(args[++i]);
-      return true;
-    };
-    if (a == "--help" || a == "-h") {
-      std::fputs(kSimUsage, stdout);
-      return 0;
-    } else if (a == "--steps") {
-      std::string v;
-      if (!value(v) || !whole(v, 0, steps))
-        return usageError("--steps must be a whole number >= 0, got '" + v + "'");
-    } else if (a == "--out") {
-      if (!value(outPath)) return usageError("--out needs a file name");
-    } else if (a == "--csv") {
-      if (!value(csvPath)) return usageError("--csv needs a file name");
-    } else if (a == "--trace") {
-      if (!value(trace)) return usageError("--trace needs a list of bodies");
-    } else if (a == "--integrator") {
-      if (!value(integrator)) return usageError("--integrator needs a name");
-    } else if (a == "--frames") {
-      if (!value(frames.directory)) return usageError("--frames needs a directory");
-    } else if (a == "--sheet") {
-      if (!value(frames.sheet)) return usageError("--sheet needs a file name");
-    } else if (a == "--video") {
-      if (!value(frames.video)) return usageError("--video needs a file name");
-    } else if (a == "--no-overlay") {
-      frames.overlay = false;
-    } else if (a == "--profile") {
-      profile = true;
-    } else if (a == "--lanes") {
-      std::string v;
-      if (!value(v) || !whole(v, 4, lanes) || (lanes != 4 && lanes != 8))
-        return usageError("--lanes must be 4 or 8, got '" + v + "'");
-    } else if (a == "--every") {
-      std::string v;
-      if (!value(v)) return usageError("--every must be a whole number >= 1, got ''");
-      if (const auto e = parseEvery(v, frames.every)) return usageError(*e);
-    } else if (a == "--size") {
-      std::string v;
-      if (!value(v)) return usageError("--size needs WxH");
-      if (const auto e = parseSize(v, frames.width, frames.height)) return usageError(*e);
-    } else if (!a.empty() && a[0] == '-') {
-      return usageError("unknown option '" + std::string(a) + "'");
-    } else if (scenePath.empty()) {
-      scenePath = std::string(a);
-    } else {
-      return usageError("more than one scene file");
-    }
-  }
-  if (scenePath.empty()) return usageError("no scene file");
-  if (steps < 0) return usageError("--steps is required");
+  if (const auto e = frameOptionsFrom(frameArgs, frames)) return usageError(e->message);
+  frames.overlay = !noOverlay;  // on by default for a scene: it is a debugging view
   if (trace.empty() != csvPath.empty()) return usageError("--trace and --csv go together");
   const RunInput inputs[] = {{"the scene", scenePath}};
   if (const auto e = checkFrameOptions(frames, inputs)) {

@@ -4,26 +4,17 @@
 // check of a level a designer just saved, and what scripts use to compare two levels.
 #include <cstdio>
 #include <exception>
+#include <optional>
 #include <string>
 
 #include "game/cli.h"
+#include "game/commands/command_line.h"
 #include "game/level/level_builder.h"
 #include "game/level/level_error.h"
 #include "game/level/level_loader.h"
 
 namespace game {
 namespace {
-
-constexpr const char* kLevelUsage =
-    "usage: ricochet level LEVEL.tmj [--json]\n"
-    "\n"
-    "Reads a Tiled map (orthogonal, finite; JSON map and tilesets), builds its world and\n"
-    "prints one summary line on stdout: the map's size, bodies and shapes, spawns, pickups,\n"
-    "triggers, paths, markers and the world's state hash. game/level/README.md lists what a\n"
-    "map may hold.\n"
-    "  --json   the summary as a JSON object instead\n"
-    "Exit codes: 0 done, 1 bad level (one line on stderr naming the file, the layer and the\n"
-    "object), 2 bad command line.\n";
 
 // A path as a JSON string's contents: quotes, backslashes and control characters escaped.
 std::string jsonEscaped(const std::string& text) {
@@ -46,30 +37,19 @@ std::string jsonEscaped(const std::string& text) {
 }  // namespace
 
 int runLevel(std::span<const std::string_view> args) {
+  CLI::App app{
+      "Reads a Tiled map (orthogonal, finite; JSON map and tilesets), builds its world and\n"
+      "prints one summary line on stdout: the map's size, bodies and shapes, spawns, pickups,\n"
+      "triggers, paths, markers and the world's state hash. game/level/README.md lists what a\n"
+      "map may hold.\n"
+      "Exit codes: 0 done, 1 bad level (one line on stderr naming the file, the layer and the\n"
+      "object), 2 bad command line.",
+      "ricochet level"};
   std::string path;
   bool json = false;
-  for (const std::string_view a : args) {
-    if (a == "--help" || a == "-h") {
-      std::fputs(kLevelUsage, stdout);
-      return 0;
-    }
-    if (a == "--json") {
-      json = true;
-    } else if (!a.empty() && a[0] == '-') {
-      std::fprintf(stderr, "ricochet level: unknown option '%.*s' (try ricochet level --help)\n",
-                   static_cast<int>(a.size()), a.data());
-      return 2;
-    } else if (path.empty()) {
-      path = a;
-    } else {
-      std::fprintf(stderr, "ricochet level: one level at a time (try ricochet level --help)\n");
-      return 2;
-    }
-  }
-  if (path.empty()) {
-    std::fprintf(stderr, "ricochet level: which level? (try ricochet level --help)\n");
-    return 2;
-  }
+  app.add_option("level", path, "the level (.tmj)")->required();
+  app.add_flag("--json", json, "the summary as a JSON object instead");
+  if (const std::optional<int> exit = parseCommandLine(app, "ricochet level", args)) return *exit;
   try {
     const Level level = loadLevel(path);
     rc::World world(levelWorldDef(level));

@@ -2,6 +2,7 @@
 
 #include <bit>
 #include <stdexcept>
+#include <type_traits>
 #include <utility>
 
 #include "game/match/actors.h"
@@ -25,6 +26,7 @@ Match::Match(Level level, const MatchConfig& config) {
   s_.weapons = config.weapons ? *config.weapons : loadWeaponTable(bundledWeaponTablePath());
   s_.world = std::make_unique<rc::World>(levelWorldDef(s_.level));
   s_.built = buildLevel(s_.level, *s_.world);
+  s_.nav = buildNavGrid(s_.level, s_.built, *s_.world, s_.tuning.radius);
   for (std::size_t i = 0; i < s_.level.objects.size(); ++i) {
     const LevelObject& o = s_.level.objects[i];
     if (o.material.health > 0.0f) s_.props.push_back({i, s_.built.bodies[i], o.material.health});
@@ -36,7 +38,10 @@ void Match::tick(std::span<const PlayerInput> inputs) {
   MatchState& s = s_;
   s.shots.clear();
   s.explosions.clear();
+  s.sightRays.clear();
+  s.heard.clear();
   decideBots(s, inputs);
+  s.sounds.clear();  // heard (or not) by now; this tick's are made from here on
   moveActors(s);
   fireWeapons(s);
   s.world->step(kTickSeconds);
@@ -53,6 +58,18 @@ std::uint64_t Match::hash() const {
     }
   };
   auto mixFloat = [&](float f) { mix(std::bit_cast<std::uint32_t>(f), 4); };
+  auto mixField = [&](const auto& v) {
+    using T = std::decay_t<decltype(v)>;
+    if constexpr (std::is_same_v<T, rc::Vec2>) {
+      mixFloat(v.x);
+      mixFloat(v.y);
+    } else if constexpr (std::is_same_v<T, float>) {
+      mixFloat(v);
+    } else {
+      static_assert(std::is_integral_v<T> || std::is_enum_v<T>);
+      mix(static_cast<std::uint64_t>(v), static_cast<int>(sizeof(T)));
+    }
+  };
   mix(s_.world->stateHash(), 8);
   mix(static_cast<std::uint64_t>(s_.tick), 8);
   mix(s_.rng.state(), 8);
@@ -80,6 +97,11 @@ std::uint64_t Match::hash() const {
     mix(static_cast<std::uint32_t>(g.fuse), 4);
     mix(static_cast<std::uint32_t>(g.bounces), 4);
   }
+  for (const BotMind& m : s_.minds)
+    forEachField(m, mixField);
+  mix(s_.sounds.size(), 4);
+  for (const Sound& sound : s_.sounds)
+    forEachField(sound, mixField);
   return h;
 }
 

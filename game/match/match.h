@@ -2,10 +2,15 @@
 // they do, advanced one fixed tick at a time.
 //
 // The tick reads top to bottom (Quake III's G_RunFrame is the model; Match::tick):
-//   decide      every bot (and every player on autopilot) fills its input from what it perceives
-//   move        actors accelerate towards what their input asks
+//   decide      every bot (and every player on autopilot) perceives: hears the sounds the last
+//               tick made, looks (sight cone and line-of-sight rays) every few ticks, staggered
+//               across bots; then fills its input from what it remembers (bots/brain.cpp: patrol,
+//               investigate, chase, attack, take cover, flee; paths on the navigation grid);
+//               then the last tick's sounds are forgotten
+//   move        actors accelerate towards what their input asks; running makes footsteps
 //   weapons     grenades whose fuse ran out explode; shots are ray casts through the world,
-//               now, before the bodies move (penetration, ricochets); grenades are thrown
+//               now, before the bodies move (penetration, ricochets); grenades are thrown; shots
+//               and blasts are heard
 //   physics     the world steps once (World::step)
 //   rules       the step's events: damage, deaths, triggers, grenades' bounces; respawns due
 // Entities refer to bodies by handle and are created and removed between steps only. Randomness
@@ -20,6 +25,8 @@
 #include <string>
 #include <vector>
 
+#include "game/bots/bot_state.h"
+#include "game/bots/navigation.h"
 #include "game/level/level.h"
 #include "game/level/level_builder.h"
 #include "game/match/input.h"
@@ -98,17 +105,6 @@ struct Explosion {
   int bodiesPushed = 0;                // dynamic bodies it reached, actors included
 };
 
-// What a bot (or a player on autopilot) keeps between ticks: only what it perceived or chose.
-struct BotMind {
-  std::optional<std::size_t> target;  // the enemy it saw last
-  rc::Vec2 lastSeen{};                // where it saw it
-  std::int64_t lastSeenTick = -1;
-  rc::Vec2 goal{};             // where it is walking to when it sees no one
-  std::int64_t goalTick = -1;  // when it chose that goal
-  float strafe = 1.0f;         // which way it sidesteps while shooting
-  int stuckTicks = 0;          // ticks it has wanted to move and barely moved
-};
-
 struct MatchConfig {
   int bots = -1;           // bots to field: -1 every bot spawn of the level; more reuse them
   int players = 1;         // players, driven by the autopilot unless inputs are given
@@ -126,13 +122,24 @@ struct MatchState {
   std::unique_ptr<rc::World> world;
   BuiltLevel built;
   std::vector<Actor> actors;
-  std::vector<BotMind> minds;  // one per actor
+  // What bots keep between ticks (bots/bot_state.h lists every field): one mind per actor, and
+  // the sounds made during the last tick (the next decide phase hears them, then they are gone).
+  std::vector<BotMind> minds;
+  std::vector<Sound> sounds;
   std::vector<PropState> props;
   rc::Random rng{1};
   std::int64_t tick = 0;
   std::vector<Grenade> grenades;
   std::vector<Shot> shots;            // this tick's
   std::vector<Explosion> explosions;  // this tick's
+  // For the view, this tick's perception (never read back by the simulation, so not state):
+  // the line-of-sight rays bots cast and the sounds they heard.
+  std::vector<SightRay> sightRays;
+  std::vector<HeardSound> heard;
+  // Derived from the level, the same for every match on it (not hashed, not saved): where actors
+  // can walk. And the path search's scratch arrays.
+  NavGrid nav;
+  PathSearch navSearch;
 };
 
 // User data of the bodies and shapes a match creates (a level's carry levelUserData): a tag in
@@ -160,7 +167,8 @@ class Match {
   const MatchState& state() const { return s_; }
   MatchState& state() { return s_; }
   // FNV-1a over the world's state hash and the match's own state (actors, props, the
-  // generator, the tick), in creation order: equal hashes, equal futures.
+  // generator, the tick, grenades, bots' minds, the last tick's sounds), in creation order:
+  // equal hashes, equal futures.
   std::uint64_t hash() const;
 
  private:

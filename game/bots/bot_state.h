@@ -25,8 +25,8 @@ enum class Behaviour : std::uint8_t {
   investigate,  // an enemy heard, not seen: going to where the sound came from
   chase,        // an enemy seen, now out of sight: going to where it was last seen
   attack,       // an enemy in sight: shooting it, with aim error, at a fighting distance
-  takeCover,    // hurt, an enemy known: going to a place it cannot see, firing back from there
-  flee,         // hurt, an enemy known, no cover near: running away from it
+  takeCover,    // hurt and hit again: going to a place the enemy cannot see, firing back
+  flee,         // hurt and hit again, no cover near: running away from the enemy
 };
 const char* behaviourName(Behaviour behaviour);
 
@@ -69,6 +69,7 @@ struct BotMind {
   std::int64_t goalTick = -1;   // when it chose that goal; -1: none
   float strafe = 1.0f;          // which way it sidesteps while shooting
   std::int32_t stuckTicks = 0;  // ticks it has wanted to move and barely moved
+  float health = 0.0f;          // its health at its last decision (less now: it was hit)
 };
 
 enum class SoundKind : std::uint8_t { footstep, shot, explosion };
@@ -86,7 +87,8 @@ struct Sound {
 // For the view: a line-of-sight ray a bot cast this tick (to an enemy inside its cone).
 struct SightRay {
   std::int32_t viewer = -1, target = -1;
-  rc::Vec2 from{}, to{};  // to: where it stopped (the target's centre when clear)
+  rc::Vec2 from{}, to{};  // to: where it stopped (the target's centre when clear; a point
+                          // inside the wall when the grid knew the wall was there)
   bool clear = false;     // it reached the target: seen
 };
 
@@ -117,7 +119,7 @@ void forEachField(const BotMind& m, F&& f) {
     forEachField(e, f);
   f(m.focus);
   forEachField(m.route, f);
-  f(m.goal), f(m.goalTick), f(m.strafe), f(m.stuckTicks);
+  f(m.goal), f(m.goalTick), f(m.strafe), f(m.stuckTicks), f(m.health);
 }
 template <class F>
 void forEachField(const Sound& s, F&& f) {
@@ -129,7 +131,7 @@ void forEachField(const Sound& s, F&& f) {
 static_assert(std::is_trivially_copyable_v<BotMind> && std::is_trivially_copyable_v<Sound>);
 static_assert(sizeof(MemoryEntry) == 40);
 static_assert(sizeof(NavRoute) == kRouteWaypoints * 8 + 24);
-static_assert(sizeof(BotMind) == 24 + kMemorySlots * 40 + 8 + sizeof(NavRoute) + 24);
+static_assert(sizeof(BotMind) == 24 + kMemorySlots * 40 + 8 + sizeof(NavRoute) + 32);
 static_assert(sizeof(Sound) == 24);
 
 }  // namespace game

@@ -8,15 +8,21 @@
 //   investigate  the strongest memory is a sound: walk to where it came from, facing it; once
 //                there, look around until the memory fades
 //   chase        the strongest memory is an enemy seen but no longer in sight: walk to where it
-//                should be by now, facing it; now and then a grenade goes there first
-//   attack       the strongest memory is an enemy in sight: shoot at it with aim error, keeping
-//                a fighting distance and sidestepping
-//   take cover   hurt (at most kHurtFraction of full health) and an enemy remembered: go to the
-//                nearest place it cannot see (cover.h), face it, fire back when it shows
+//                should be by now, facing it; now and then a grenade goes there first (never
+//                near a friend: a team knows where its own are)
+//   attack       the strongest memory is an enemy in sight: shoot at it with aim error (never
+//                through a friend), keeping a fighting distance and sidestepping
+//   take cover   hurt (at most kHurtFraction of full health), hit again and an enemy
+//                remembered: go to the nearest place it cannot see (cover.h), face it, fire
+//                back when it shows; after kHideTicks (health does not come back) it fights on
+//                as above until the next hit
 //   flee         the same, with no cover in reach: run to the place farthest from it
 //
-// The memory fading to nothing brings every behaviour back to patrol. A bot turns at most
-// kTurnRate: its view cone, and so what it can see, follows its aim.
+// The memory fading to nothing brings every behaviour back to patrol. A patrolling bot stuck
+// against an actor created before it gives way: it turns to a patrol point whose way leads away
+// from what it touches (two bots meeting in a one-tile corridor would otherwise push each other
+// for ever). A bot turns at
+// most kTurnRate: its view cone, and so what it can see, follows its aim.
 #include <algorithm>
 #include <cmath>
 
@@ -71,16 +77,17 @@ constexpr float kFireCone = 0.15f;           // rad: it fires once its aim is th
 constexpr float kFar = 10.0f, kNear = 4.0f;  // m: the distance it keeps from an enemy
 constexpr std::int64_t kLead = 30;           // ticks: how far ahead it expects a seen enemy
 constexpr std::int64_t kGoalTicks = 60 * kTicksPerSecond;   // a patrol goal is given up after
-constexpr int kStuckTicks = kTicksPerSecond / 2;            // barely moving: plan again
-constexpr int kGiveUpTicks = 2 * kTicksPerSecond;           // still stuck: another patrol goal
-constexpr std::int64_t kReplanTicks = kTicksPerSecond / 2;  // a moving target: plan at most
+constexpr int kStuckTicks = kTicksPerSecond / 2;            // barely moving: sidestep
+constexpr std::int64_t kReplanTicks = kTicksPerSecond / 2;  // a moving target: replan at most
 constexpr std::int64_t kCoverTicks = 2 * kTicksPerSecond;   // seen in cover: find another after
+constexpr std::int64_t kHideTicks = 4 * kTicksPerSecond;    // in cover or fleeing at most
 constexpr float kWaypointReach = 0.4f;                      // m
 constexpr float kArrive = 0.75f;                            // m: a goal is reached
+constexpr float kHazardProbe = 0.6f;  // m: how far ahead a walk is checked for hazards
 // A grenade goes where an enemy was last seen when it is this far (m: outside the blast, within
 // a throw's roll), the bot's turn comes (every 2 s, staggered across bots) and the first
-// kThrowNear m of the throw are clear (a grenade thrown into a wall comes back); then the bot
-// steps back for the fuse's time.
+// kThrowNear m of the throw are clear (a grenade thrown into a wall comes back) and no friend is
+// near where it lands; then the bot steps back for the fuse's time.
 constexpr float kThrowNear = 5.0f, kThrowFar = 12.0f;
 constexpr std::int64_t kThrowEvery = 2 * kTicksPerSecond;
 
@@ -145,21 +152,48 @@ rc::Vec2 steer(MatchState& s, std::size_t i, rc::Vec2 at, rc::Vec2 target) {
   if (route.planned < 0 || (route.next >= route.length && route.partial) || moved ||
       mind.stuckTicks == 2 * kStuckTicks)
     plan(s, i, at, target);
-  while (route.next < route.length &&
-         rc::distanceSquared(at, route.points[route.next]) < kWaypointReach * kWaypointReach)
-    ++route.next;
-  const rc::Vec2 to = route.next < route.length ? route.points[route.next] : target;
-  const rc::Vec2 d = to - at;
-  if (rc::lengthSquared(d) < kArrive * kArrive && route.next >= route.length) return {};
-  const rc::Vec2 ahead = rc::normalize(d);
-  if (mind.stuckTicks < kStuckTicks) return ahead;
-  const float side = (static_cast<int>(i) + mind.stuckTicks / kStuckTicks) % 2 == 0 ? 1.0f : -1.0f;
-  return rc::normalize(ahead + side * rc::Vec2{-ahead.y, ahead.x});
+  auto way = [&]() -> rc::Vec2 {
+    while (route.next < route.length &&
+           rc::distanceSquared(at, route.points[route.next]) < kWaypointReach * kWaypointReach)
+      ++route.next;
+    const rc::Vec2 to = route.next < route.length ? route.points[route.next] : target;
+    const rc::Vec2 d = to - at;
+    if (rc::lengthSquared(d) < kArrive * kArrive && route.next >= route.length) return {};
+    const rc::Vec2 ahead = rc::normalize(d);
+    if (mind.stuckTicks < kStuckTicks) return ahead;
+    const float side =
+        (static_cast<int>(i) + mind.stuckTicks / kStuckTicks) % 2 == 0 ? 1.0f : -1.0f;
+    return rc::normalize(ahead + side * rc::Vec2{-ahead.y, ahead.x});
+  };
+  rc::Vec2 dir = way();
+  // About to enter a hazard's margin (pushed off its route, or sidestepping): plan again from
+  // here, once a tick; the route starts on the nearest cell that is no hazard.
+  const int probe = s.nav.cellAt(at + kHazardProbe * dir);
+  if (probe >= 0 && (s.nav.flags[static_cast<std::size_t>(probe)] & NavGrid::kHazard) != 0 &&
+      route.planned != s.tick) {
+    plan(s, i, at, target);
+    dir = way();
+  }
+  return dir;
+}
+
+// Where the actors it touches are, from `at`: the sum of the directions to those whose index is
+// below `below` (zero when it touches none): what a bot bumped into, felt, not seen.
+rc::Vec2 bumpedInto(const MatchState& s, std::size_t i, rc::Vec2 at, std::size_t below) {
+  const float touch = 2.0f * s.tuning.radius + 0.05f;
+  rc::Vec2 sum{};
+  for (std::size_t j = 0; j < below && j < s.actors.size(); ++j) {
+    if (j == i || !s.actors[j].alive) continue;
+    const rc::Vec2 d = s.world->worldCenter(s.actors[j].body) - at;
+    if (rc::lengthSquared(d) < touch * touch) sum += d;
+  }
+  return sum;
 }
 
 // Somewhere to patrol to: one of the grid's patrol points in the bot's region (not the one it
-// stands on), at random; without a grid, one of the level's places.
-rc::Vec2 pickGoal(MatchState& s, rc::Vec2 at) {
+// stands on), at random, and if `away` is not zero one whose way sets off against it; without a
+// grid, one of the level's places.
+rc::Vec2 pickGoal(MatchState& s, rc::Vec2 at, rc::Vec2 away) {
   const NavGrid& nav = s.nav;
   const int start = nearestPassable(nav, at);
   if (start < 0 || nav.patrol.empty()) {
@@ -172,27 +206,39 @@ rc::Vec2 pickGoal(MatchState& s, rc::Vec2 at) {
     return places[s.rng.below(static_cast<std::uint32_t>(places.size()))];
   }
   const std::int32_t region = nav.region[static_cast<std::size_t>(start)];
+  int fallback = start;
   for (int tries = 0; tries < 8; ++tries) {
-    const int c = nav.patrol[s.rng.below(static_cast<std::uint32_t>(nav.patrol.size()))];
-    if (c != start && nav.region[static_cast<std::size_t>(c)] == region) return nav.center(c);
+    const std::size_t point = s.rng.below(static_cast<std::uint32_t>(nav.patrol.size()));
+    const int c = nav.patrol[point];
+    if (c == start || nav.region[static_cast<std::size_t>(c)] != region) continue;
+    fallback = c;
+    if (away == rc::Vec2{}) return nav.center(c);
+    std::vector<int>& cells = s.navSearch.path;
+    if (pathToPatrolPoint(nav, start, point, s.navSearch, cells) && cells.size() > 1 &&
+        rc::dot(nav.center(cells[1]) - nav.center(cells[0]), away) < 0.0f)
+      return nav.center(c);
   }
-  return nav.center(start);
+  return nav.center(fallback);
 }
 
-// The behaviour its memory and health call for (finding cover when it starts being hurt).
+// The behaviour its memory and health call for (finding cover when a hurt bot is hit).
 Behaviour choose(MatchState& s, std::size_t i, rc::Vec2 at) {
   BotMind& mind = s.minds[i];
   if (mind.focus < 0) return Behaviour::patrol;
   const MemoryEntry& threat = mind.memory[static_cast<std::size_t>(mind.focus)];
-  if (s.actors[i].health <= kHurtFraction * s.tuning.health) {
+  const float health = s.actors[i].health;
+  if (health <= kHurtFraction * s.tuning.health) {
     const bool hiding = mind.behaviour == Behaviour::takeCover || mind.behaviour == Behaviour::flee;
-    const bool blown = inSight(mind, threat) && s.tick - mind.goalTick >= kCoverTicks;
-    if (hiding && !blown) return mind.behaviour;
-    const std::optional<CoverSpot> spot = findCover(s, i, threat.position);
-    mind.goal = spot ? spot->position : at + (at - threat.position);
-    mind.goalTick = s.tick;
-    mind.route.planned = -1;
-    return spot && spot->hidden ? Behaviour::takeCover : Behaviour::flee;
+    const bool hit = health < mind.health;
+    const bool blown = hiding && inSight(mind, threat) && s.tick - mind.goalTick >= kCoverTicks;
+    if (hit || blown) {
+      const std::optional<CoverSpot> spot = findCover(s, i, threat.position);
+      mind.goal = spot ? spot->position : at + (at - threat.position);
+      mind.goalTick = s.tick;
+      mind.route.planned = -1;
+      return spot && spot->hidden ? Behaviour::takeCover : Behaviour::flee;
+    }
+    if (hiding && s.tick - mind.behaviourSince < kHideTicks) return mind.behaviour;
   }
   if (inSight(mind, threat)) return Behaviour::attack;
   return threat.sense == Sense::seen ? Behaviour::chase : Behaviour::investigate;
@@ -207,10 +253,36 @@ bool throwsAt(MatchState& s, std::size_t i, rc::Vec2 at, rc::Vec2 target) {
   if (!grenade || a.ammo[*grenade] <= 0 || a.cooldown > 1 || !(distance > kThrowNear) ||
       !(distance < kThrowFar) || (s.tick + static_cast<std::int64_t>(i) * 13) % kThrowEvery != 0)
     return false;
-  const float radius = s.weapons.weapons[*grenade].grenade.radius;
+  // Not where a friend is (a team knows where its own are): within the blast and a metre more.
+  const GrenadeSpec& spec = s.weapons.weapons[*grenade].grenade;
+  const float unsafe = spec.blastRadius + 1.0f;
+  for (std::size_t j = 0; j < s.actors.size(); ++j) {
+    const Actor& other = s.actors[j];
+    if (j != i && other.alive && other.team == a.team &&
+        rc::distanceSquared(s.world->worldCenter(other.body), target) < unsafe * unsafe)
+      return false;
+  }
+  const float radius = spec.radius;
   const rc::Vec2 path = (kThrowNear / distance) * (target - at);
   return !s.world->castCircle(at, radius, path,
                               rc::QueryFilter::ignoring(a.body, {0xFFFFFFFFu, 0xFFFFFFFFu}));
+}
+
+// Whether no friend stands in the line of fire from `at` to `target` (within a body's width of
+// it, and not beyond the target): a team knows where its own are.
+bool clearOfFriends(const MatchState& s, std::size_t i, rc::Vec2 at, rc::Vec2 target) {
+  const rc::Vec2 d = target - at;
+  const float length2 = rc::lengthSquared(d);
+  if (!(length2 > 0.0f)) return true;
+  const float width = 2.0f * s.tuning.radius;
+  for (std::size_t j = 0; j < s.actors.size(); ++j) {
+    const Actor& other = s.actors[j];
+    if (j == i || !other.alive || other.team != s.actors[i].team) continue;
+    const rc::Vec2 p = s.world->worldCenter(other.body) - at;
+    const float t = rc::dot(p, d) / length2;
+    if (t > 0.0f && t < 1.0f && rc::distanceSquared(p, t * d) < width * width) return false;
+  }
+  return true;
 }
 
 PlayerInput decide(MatchState& s, std::size_t i) {
@@ -234,9 +306,13 @@ PlayerInput decide(MatchState& s, std::size_t i) {
     case Behaviour::patrol: {
       const bool reached =
           mind.goalTick >= 0 && rc::distanceSquared(at, mind.goal) < kArrive * kArrive;
-      if (mind.goalTick < 0 || reached || s.tick - mind.goalTick > kGoalTicks ||
-          mind.stuckTicks > kGiveUpTicks) {
-        mind.goal = pickGoal(s, at);
+      // Stuck against an actor created before it, it gives way (the first keeps going); stuck
+      // for longer, whatever blocks it, it goes elsewhere.
+      const bool yields = mind.stuckTicks >= kStuckTicks && bumpedInto(s, i, at, i) != rc::Vec2{};
+      if (mind.goalTick < 0 || reached || s.tick - mind.goalTick > kGoalTicks || yields ||
+          mind.stuckTicks >= 2 * kStuckTicks) {
+        const bool stuck = mind.stuckTicks >= kStuckTicks;
+        mind.goal = pickGoal(s, at, stuck ? bumpedInto(s, i, at, s.actors.size()) : rc::Vec2{});
         mind.goalTick = s.tick;
         mind.route.planned = -1;
         mind.stuckTicks = 0;
@@ -276,7 +352,8 @@ PlayerInput decide(MatchState& s, std::size_t i) {
       const float error = kAimError + kAimErrorPerSpeed * rc::length(threat->velocity);
       const float exact = angleOf(d);
       aim = turnToward(a.aim, exact + s.rng.uniform(-error, error));
-      if (std::fabs(wrapAngle(exact - aim)) < kFireCone) buttons = kButtonFire;
+      if (std::fabs(wrapAngle(exact - aim)) < kFireCone && clearOfFriends(s, i, at, target))
+        buttons = kButtonFire;
       break;
     }
     case Behaviour::takeCover:
@@ -284,11 +361,13 @@ PlayerInput decide(MatchState& s, std::size_t i) {
       move = steer(s, i, at, mind.goal);
       const rc::Vec2 d = threat->position - at;
       aim = turnToward(a.aim, angleOf(d));
-      if (inSight(mind, *threat) && std::fabs(wrapAngle(angleOf(d) - aim)) < kFireCone)
+      if (inSight(mind, *threat) && std::fabs(wrapAngle(angleOf(d) - aim)) < kFireCone &&
+          clearOfFriends(s, i, at, threat->position))
         buttons = kButtonFire;
       break;
     }
   }
+  mind.health = a.health;
   const bool barelyMoving = rc::lengthSquared(s.world->linearVelocity(a.body)) < 0.25f;
   mind.stuckTicks = move != rc::Vec2{} && barelyMoving ? mind.stuckTicks + 1 : 0;
   return makeInput(move, aim, buttons, 0);

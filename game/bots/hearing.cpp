@@ -1,5 +1,6 @@
 #include "game/bots/hearing.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 

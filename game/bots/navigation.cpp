@@ -135,6 +135,14 @@ NavGrid makeNavGrid(int width, int height, float cell, rc::Vec2 origin,
   grid.origin = origin;
   grid.flags = std::move(flags);
   grid.flags.resize(static_cast<std::size_t>(width * height), NavGrid::kBlocked);
+  grid.moves.assign(grid.flags.size(), 0);
+  for (int c = 0; c < grid.size(); ++c) {
+    if (!grid.passable(c)) continue;
+    std::uint8_t m = 0;
+    for (int k = 0; k < 8; ++k)
+      if (canStep(grid, grid.x(c), grid.y(c), k)) m = static_cast<std::uint8_t>(m | 1u << k);
+    grid.moves[static_cast<std::size_t>(c)] = m;
+  }
   labelRegions(grid);
   spreadPatrolPoints(grid, places);
   std::uint64_t h = 0xcbf29ce484222325ull;
@@ -153,6 +161,47 @@ NavGrid makeNavGrid(int width, int height, float cell, rc::Vec2 origin,
   grid.signature = h;
   return grid;
 }
+
+namespace {
+
+// Which cell centres merged tile loops enclose (one byte per cell): a chain has no inside for an
+// overlap test, so each row of centres is crossed with the loops' links and the centres between
+// the first and second crossing, the third and fourth, ... are inside (even-odd; the loops of a
+// tile layer are closed).
+std::vector<std::uint8_t> insideTiles(const Level& level, rc::Vec2 origin, float cell, int width,
+                                      int height) {
+  std::vector<std::uint8_t> inside(static_cast<std::size_t>(width * height), 0);
+  std::vector<float> crossings;
+  for (const LevelObject& o : level.objects) {
+    if (o.kind != LevelObjectKind::tiles) continue;
+    const rc::Transform xf{o.position, rc::Rot::fromAngle(o.angle)};
+    std::vector<rc::Segment> links;
+    for (const rc::Shape& shape : o.shapes)
+      if (shape.type == rc::ShapeType::chainSegment)
+        links.push_back({rc::apply(xf, shape.chainSegment.segment.point1),
+                         rc::apply(xf, shape.chainSegment.segment.point2)});
+    if (links.empty()) continue;
+    for (int y = 0; y < height; ++y) {
+      const float cy = origin.y + static_cast<float>(y) * cell;
+      crossings.clear();
+      for (const rc::Segment& l : links)
+        if ((l.point1.y > cy) != (l.point2.y > cy))
+          crossings.push_back(l.point1.x + (cy - l.point1.y) * (l.point2.x - l.point1.x) /
+                                               (l.point2.y - l.point1.y));
+      std::sort(crossings.begin(), crossings.end());
+      for (std::size_t k = 0; k + 1 < crossings.size(); k += 2) {
+        const int x0 = std::max(0, static_cast<int>(std::ceil((crossings[k] - origin.x) / cell)));
+        const int x1 =
+            std::min(width - 1, static_cast<int>(std::floor((crossings[k + 1] - origin.x) / cell)));
+        for (int x = x0; x <= x1; ++x)
+          inside[static_cast<std::size_t>(y * width + x)] = 1;
+      }
+    }
+  }
+  return inside;
+}
+
+}  // namespace
 
 rc::QueryFilter staticSolids(const rc::World& world) {
   return {kEverything, [&world](const rc::ShapeRef& r) {
@@ -188,19 +237,29 @@ NavGrid buildNavGrid(const Level& level, const BuiltLevel& built, const rc::Worl
   });
   const rc::Shape disc = rc::makeCircle({}, radius + kNavMargin);
   const rc::Shape wide = rc::makeCircle({}, radius + kNavMargin + kNavSpan * cell);
+  // Kill zones get another cell of margin: a crowd can push a bot walking past.
+  const rc::Shape deadly = rc::makeCircle({}, radius + kNavMargin + (kNavSpan + 1.0f) * cell);
+  // Within a cell of a centre inside solid tiles, with a little to spare.
+  const rc::Shape core = rc::makeCircle({}, 0.71f * cell);
+  const std::vector<std::uint8_t> enclosed = insideTiles(level, bounds.lower, cell, width, height);
   std::vector<std::uint8_t> flags(static_cast<std::size_t>(width * height), 0);
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
+      const std::size_t c = static_cast<std::size_t>(y * width + x);
       const rc::Transform at{
           bounds.lower + rc::Vec2{static_cast<float>(x) * cell, static_cast<float>(y) * cell}, {}};
       std::uint8_t f = 0;
-      if (!killers.empty() && !world.overlapShape(wide, at, hazards).empty()) f |= NavGrid::kHazard;
-      if (!world.overlapShape(disc, at, solids).empty()) {
+      if (!killers.empty() && !world.overlapShape(deadly, at, hazards).empty())
+        f |= NavGrid::kHazard;
+      if (enclosed[c] != 0) {
+        f |= NavGrid::kBlocked;
+        if (world.overlapShape(core, at, solids).empty()) f |= NavGrid::kOpaque;
+      } else if (!world.overlapShape(disc, at, solids).empty()) {
         f |= NavGrid::kBlocked;
       } else if (f == 0 && world.overlapShape(wide, at, solids).empty()) {
         f |= NavGrid::kRoomy;
       }
-      flags[static_cast<std::size_t>(y * width + x)] = f;
+      flags[c] = f;
     }
   }
   std::vector<rc::Vec2> places;
@@ -260,7 +319,7 @@ bool findPath(const NavGrid& grid, int start, int goal, PathSearch& search, std:
   }
   beginSearch(grid, search);
   const std::uint32_t stamp = search.stamp;
-  const int width = grid.width, height = grid.height;
+  const int width = grid.width;
   const int goalX = grid.x(goal), goalY = grid.y(goal);
   // The heuristic: the octile distance, or what the triangle inequality through a landmark says
   // if that is more (|d(L, goal) - d(L, n)| <= d(n, goal)); each is consistent, so their maximum.
@@ -283,8 +342,7 @@ bool findPath(const NavGrid& grid, int start, int goal, PathSearch& search, std:
   std::int32_t* parent = search.parent.data();
   std::uint32_t* reached = search.reached.data();
   std::uint32_t* closed = search.closed.data();
-  const std::uint8_t* flags = grid.flags.data();
-  auto free = [flags](int c) { return (flags[c] & (NavGrid::kBlocked | NavGrid::kHazard)) == 0; };
+  const std::uint8_t* moves = grid.moves.data();
   search.heap.clear();
   cost[start] = 0;
   parent[start] = -1;
@@ -306,17 +364,12 @@ bool findPath(const NavGrid& grid, int start, int goal, PathSearch& search, std:
       return true;
     }
     const int x = c % width, y = c / width;
-    // Which straight neighbours are passable: diagonals need both of theirs.
-    bool open[4];
-    for (int k = 0; k < 4; ++k) {
-      const int nx = x + kDx[k], ny = y + kDy[k];
-      open[k] = nx >= 0 && ny >= 0 && nx < width && ny < height && free(ny * width + nx);
-    }
+    const unsigned legal = moves[c];
     for (int k = 0; k < 8; ++k) {
-      if (k < 4 ? !open[k] : !(open[kDx[k] > 0 ? 0 : 1] && open[kDy[k] > 0 ? 2 : 3])) continue;
+      if ((legal >> k & 1u) == 0) continue;
       const int nx = x + kDx[k], ny = y + kDy[k];
       const int next = ny * width + nx;
-      if (closed[next] == stamp || (k >= 4 && !free(next))) continue;
+      if (closed[next] == stamp) continue;
       const std::int32_t g2 = g + (k < 4 ? kStraightCost : kDiagonalCost);
       if (reached[next] == stamp && g2 >= cost[next]) continue;
       reached[next] = stamp;
@@ -348,9 +401,9 @@ void distanceField(const NavGrid& grid, int goal, std::vector<std::int32_t>& out
       const int c = bucket[k];
       --pending;
       if (out[static_cast<std::size_t>(c)] != d) continue;  // reached cheaper since
-      const int x = c % grid.width, y = c / grid.width;
+      const unsigned legal = grid.moves[static_cast<std::size_t>(c)];
       for (int step = 0; step < 8; ++step) {
-        if (!canStep(grid, x, y, step)) continue;
+        if ((legal >> step & 1u) == 0) continue;
         const int next = c + kDy[step] * grid.width + kDx[step];
         const std::int32_t nd = d + (step < 4 ? kStraightCost : kDiagonalCost);
         if (nd < out[static_cast<std::size_t>(next)]) {
@@ -501,6 +554,17 @@ std::vector<rc::Vec2> smoothPath(const NavGrid& grid, rc::Vec2 from, const std::
     k = j + 1;
   }
   return out;
+}
+
+std::optional<rc::Vec2> pointInsideWall(const NavGrid& grid, rc::Vec2 a, rc::Vec2 b) {
+  const rc::Vec2 d = b - a;
+  const int samples = static_cast<int>(rc::length(d) / (0.5f * grid.cell));
+  for (int k = 1; k <= samples; ++k) {
+    const rc::Vec2 p = a + (static_cast<float>(k) / static_cast<float>(samples + 1)) * d;
+    const int c = grid.cellAt(p);
+    if (c >= 0 && (grid.flags[static_cast<std::size_t>(c)] & NavGrid::kOpaque) != 0) return p;
+  }
+  return std::nullopt;
 }
 
 }  // namespace game

@@ -3,11 +3,15 @@
 // The grid: square cells over the level's bounds, half a tile wide, their centres on the tiles'
 // centres and corners (so a one-tile corridor has a line of free centres down its middle). A
 // cell is blocked where a disc of the actor's radius plus kNavMargin at its centre would overlap
-// static geometry (walls, tiles, static props), and a hazard where a disc kNavSpan wider would
-// reach a kill trigger; both are impassable. A passable cell is roomy when the wider disc meets
-// no static geometry either: an actor anywhere in it is clear of walls. Moving props are not
-// obstacles (actors push them). The grid is built once per match from the level's static bodies:
-// derived data (the same level gives the same grid), so it is neither hashed nor saved.
+// static geometry (walls, tiles, static props) or where its centre is inside merged tiles (a
+// chain loop has no inside for an overlap test: a scanline says what the loops enclose), and a
+// hazard where a disc kNavSpan + 1 cells wider would reach a kill trigger (a crowd can push a bot
+// walking past); both are impassable. A cell inside tiles and farther than its half diagonal from
+// their edges is opaque: any point nearer its centre than any other's is inside the wall. A
+// passable cell is roomy when the wider disc meets no static geometry either: an actor anywhere in
+// it is clear of walls. Moving props are not obstacles (actors push them). The grid is built once
+// per match from the level's static bodies: derived data (the same level gives the same grid), so
+// it is neither hashed nor saved.
 //
 // Paths: A* over the 8-connected grid with no corner cutting (a diagonal step needs both of its
 // straight neighbours passable). Steps cost 70 straight and 99 diagonally (99/70 = 1.41429,
@@ -34,6 +38,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "game/bots/bot_state.h"
@@ -55,14 +60,16 @@ inline constexpr std::size_t kPatrolPoints = 24;
 inline constexpr std::int32_t kUnreached = 0x7FFFFFFF;
 
 struct NavGrid {
-  static constexpr std::uint8_t kBlocked = 1, kHazard = 2, kRoomy = 4;
+  static constexpr std::uint8_t kBlocked = 1, kHazard = 2, kRoomy = 4, kOpaque = 8;
   int width = 0, height = 0;
   float cell = 0.5f;                 // m
   rc::Vec2 origin{};                 // the centre of cell 0 (x 0, y 0); cell index y * width + x
   float radius = 0.0f;               // the actor's radius it was built for (m)
-  std::vector<std::uint8_t> flags;   // per cell: kBlocked, kHazard, kRoomy
+  std::vector<std::uint8_t> flags;   // per cell: kBlocked, kHazard, kRoomy, kOpaque
   std::vector<std::int32_t> region;  // per cell: its connected region of passable cells, or -1
   std::vector<std::int32_t> open;    // the passable cells, in index order
+  std::vector<std::uint8_t>
+      moves;  // per cell: bit k set when step k (E W N S NE NW SE SW) is legal
   std::vector<std::int32_t> patrol;  // the patrol points' cells (see above)
   std::uint64_t signature = 0;       // FNV-1a of the size, flags and patrol points
 
@@ -149,6 +156,11 @@ bool walkable(const NavGrid& grid, rc::Vec2 a, rc::Vec2 b);
 // straight walk can cut (walkable), at most `maxPoints` of them (the first ones).
 std::vector<rc::Vec2> smoothPath(const NavGrid& grid, rc::Vec2 from, const std::vector<int>& cells,
                                  std::size_t maxPoints);
+
+// A point of the segment from a to b (its ends excluded; checked every half cell) that is inside
+// a wall for sure (nearest an opaque cell's centre), if the grid knows one: a ray from a to b
+// meets that wall before it gets there. Sight uses it to skip the ray casts the grid can answer.
+std::optional<rc::Vec2> pointInsideWall(const NavGrid& grid, rc::Vec2 a, rc::Vec2 b);
 
 // The filter of static solid bodies (walls, tiles, static props; never sensors).
 rc::QueryFilter staticSolids(const rc::World& world);

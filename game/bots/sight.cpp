@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "game/bots/memory.h"
+#include "game/bots/navigation.h"
 #include "physics/trig.h"
 
 namespace game {
@@ -68,7 +69,19 @@ void look(MatchState& s, std::size_t viewer, const SightTuning& tuning) {
     const Actor& other = s.actors[i];
     if (other.team == me.team || !inCone(s, viewer, i, tuning)) continue;
     const rc::Vec2 to = s.world->worldCenter(other.body);
-    const std::optional<rc::WorldHit> hit = s.world->castRay(from, to - from, othersThan(me));
+    // The grid answers first when it can: a point inside a wall short of the target's disc means
+    // the ray would meet the wall first (most rays in a maze); the same answer, no cast.
+    const rc::Vec2 d = to - from;
+    const float distance = rc::length(d);
+    if (distance > s.tuning.radius) {
+      const rc::Vec2 reach = from + ((distance - s.tuning.radius) / distance) * d;
+      if (const std::optional<rc::Vec2> wall = pointInsideWall(s.nav, from, reach)) {
+        s.sightRays.push_back(
+            {static_cast<std::int32_t>(viewer), static_cast<std::int32_t>(i), from, *wall, false});
+        continue;
+      }
+    }
+    const std::optional<rc::WorldHit> hit = s.world->castRay(from, d, othersThan(me));
     const bool clear = hit && hit->body == other.body;
     s.sightRays.push_back({static_cast<std::int32_t>(viewer), static_cast<std::int32_t>(i), from,
                            clear ? to : (hit ? hit->point : to), clear});

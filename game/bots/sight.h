@@ -39,7 +39,9 @@ bool looksAt(std::int64_t tick, std::size_t viewer);
 
 // The viewer's sight now: every living enemy inside its cone gets a line-of-sight ray (listed in
 // MatchState::sightRays for the view); those it reaches are remembered as seen, with their
-// position and velocity. MatchState::minds[viewer].lastLook becomes this tick.
+// position and velocity. The same answer as sees(), cheaper: a ray the navigation grid proves
+// blocked (pointInsideWall) is not cast; its record ends at the point found inside the wall.
+// MatchState::minds[viewer].lastLook becomes this tick.
 void look(MatchState& s, std::size_t viewer, const SightTuning& tuning = {});
 
 }  // namespace game

@@ -430,9 +430,10 @@ TEST(Behaviour, AttackChaseThenFadeToPatrol) {
   EXPECT_EQ(s.minds[1].behaviourSince, lastSeen + game::kSeenFadeTicks);
 }
 
-// attack -> take cover when hurt: the spot it goes to is one the enemy cannot see (a ray from
-// the enemy meets the wall), and it gets there; with nothing to hide behind it flees instead,
-// to a place farther from the enemy.
+// attack -> take cover when hurt (at half health or less, and hit): the spot it goes to is one
+// the enemy cannot see (a ray from the enemy meets the wall), and it gets there; 4 s later, not
+// hit again, take cover -> chase. With nothing to hide behind it flees instead, to a place farther
+// from the enemy.
 TEST(Behaviour, HurtTakesCoverOrFlees) {
   {
     Match m(room({-10, 0}, {{0, 0}}, {{{2, -4}, {0.5f, 2}}}), config(1));
@@ -443,6 +444,7 @@ TEST(Behaviour, HurtTakesCoverOrFlees) {
     s.actors[1].health = 40;
     m.tick(kStill);
     ASSERT_EQ(s.minds[1].behaviour, Behaviour::takeCover);
+    const std::int64_t hidAt = s.minds[1].behaviourSince;
     const Vec2 spot = s.minds[1].goal;
     EXPECT_TRUE(s.world->castRay({-10, 0}, spot - Vec2{-10, 0}, game::staticSolids(*s.world)));
     EXPECT_GT(spot.x, 2.0f);  // behind the wall, from the player at x = -10
@@ -450,6 +452,11 @@ TEST(Behaviour, HurtTakesCoverOrFlees) {
       m.tick(kStill);
     EXPECT_LT(rc::distance(position(s, 1), spot), 1.0f);
     EXPECT_FALSE(game::sees(s, 0, 1, {100.0f, rc::kPi}));  // hidden from the player
+    // Health does not come back: after 4 s in cover, not hit again, it goes after the player it
+    // still remembers (chase: out of sight).
+    runUntil(m, 1, Behaviour::chase, 2 * game::kTicksPerSecond);
+    EXPECT_EQ(s.minds[1].behaviour, Behaviour::chase);
+    EXPECT_EQ(s.minds[1].behaviourSince - hidAt, 4 * game::kTicksPerSecond);
   }
   {
     Match m(room({-10, 0}, {{0, 0}}), config(1));
@@ -477,6 +484,32 @@ TEST(Behaviour, InvestigateFadesToPatrol) {
   const int t = runUntil(m, 1, Behaviour::patrol, 10 * game::kTicksPerSecond);
   EXPECT_EQ(s.minds[1].behaviour, Behaviour::patrol);
   EXPECT_EQ(s.minds[1].behaviourSince, heardAt + game::kHeardFadeTicks) << t;
+}
+
+// Two patrolling bots sent at each other down a one-tile corridor: the later one gives way
+// (turns to a patrol point whose way leads off), the first gets through, and neither stays stuck.
+TEST(Behaviour, PatrolGivesWayInACorridor) {
+  // A 16 m corridor one metre wide along y = 0, from x = -8 to 8.
+  Match m(room({-15, -15}, {{-7, 0}, {7, 0}}, {{{0, 1}, {8, 0.5f}}, {{0, -1}, {8, 0.5f}}}), [] {
+    MatchConfig c = config(2);
+    c.players = 0;
+    return c;
+  }());
+  MatchState& s = m.state();
+  s.minds[0].goal = {9, 0};
+  s.minds[1].goal = {-9, 0};
+  s.minds[0].goalTick = s.minds[1].goalTick = 0;
+  bool gaveWay = false;
+  int longestStuck = 0, t = 0;
+  for (; t < 10 * game::kTicksPerSecond && rc::distance(position(s, 0), {9, 0}) > 0.75f; ++t) {
+    m.tick();
+    gaveWay |= s.minds[1].goal != Vec2{-9, 0};
+    longestStuck = std::max({longestStuck, s.minds[0].stuckTicks, s.minds[1].stuckTicks});
+    ASSERT_EQ(s.minds[0].goal, (Vec2{9, 0})) << t;  // the first never gives way
+  }
+  EXPECT_LT(rc::distance(position(s, 0), {9, 0}), 0.75f) << t;
+  EXPECT_TRUE(gaveWay);
+  EXPECT_LE(longestStuck, game::kTicksPerSecond);
 }
 
 // ---- Navigation -----------------------------------------------------------------------------

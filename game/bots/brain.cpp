@@ -83,7 +83,9 @@ constexpr std::int64_t kCoverTicks = 2 * kTicksPerSecond;   // seen in cover: fi
 constexpr std::int64_t kHideTicks = 4 * kTicksPerSecond;    // in cover or fleeing at most
 constexpr float kWaypointReach = 0.4f;                      // m
 constexpr float kArrive = 0.75f;                            // m: a goal is reached
-constexpr float kHazardProbe = 0.6f;  // m: how far ahead a walk is checked for hazards
+constexpr float kPersonalSpace = 1.5f;  // m, centre to centre: friends keep apart
+constexpr float kApartWeight = 1.5f;    // how hard: a friend touching adds 0.8 of a step away
+constexpr float kHazardProbe = 0.6f;    // m: how far ahead a walk is checked for hazards
 // A grenade goes where an enemy was last seen when it is this far (m: outside the blast, within
 // a throw's roll), the bot's turn comes (every 2 s, staggered across bots) and the first
 // kThrowNear m of the throw are clear (a grenade thrown into a wall comes back) and no friend is
@@ -184,7 +186,7 @@ rc::Vec2 bumpedInto(const MatchState& s, std::size_t i, rc::Vec2 at, std::size_t
   rc::Vec2 sum{};
   for (std::size_t j = 0; j < below && j < s.actors.size(); ++j) {
     if (j == i || !s.actors[j].alive) continue;
-    const rc::Vec2 d = s.world->worldCenter(s.actors[j].body) - at;
+    const rc::Vec2 d = s.centers[j] - at;
     if (rc::lengthSquared(d) < touch * touch) sum += d;
   }
   return sum;
@@ -259,7 +261,7 @@ bool throwsAt(MatchState& s, std::size_t i, rc::Vec2 at, rc::Vec2 target) {
   for (std::size_t j = 0; j < s.actors.size(); ++j) {
     const Actor& other = s.actors[j];
     if (j != i && other.alive && other.team == a.team &&
-        rc::distanceSquared(s.world->worldCenter(other.body), target) < unsafe * unsafe)
+        rc::distanceSquared(s.centers[j], target) < unsafe * unsafe)
       return false;
   }
   const float radius = spec.radius;
@@ -278,17 +280,41 @@ bool clearOfFriends(const MatchState& s, std::size_t i, rc::Vec2 at, rc::Vec2 ta
   for (std::size_t j = 0; j < s.actors.size(); ++j) {
     const Actor& other = s.actors[j];
     if (j == i || !other.alive || other.team != s.actors[i].team) continue;
-    const rc::Vec2 p = s.world->worldCenter(other.body) - at;
+    const rc::Vec2 p = s.centers[j] - at;
     const float t = rc::dot(p, d) / length2;
     if (t > 0.0f && t < 1.0f && rc::distanceSquared(p, t * d) < width * width) return false;
   }
   return true;
 }
 
+// A moving bot's way bent away from friends nearer than kPersonalSpace (centre to centre), the
+// more the nearer, where it has room (a roomy cell): bots that go to the same sound would
+// otherwise crowd, push and stall each other (and the contacts between them were what made a
+// match's physics dearer).
+rc::Vec2 keepApart(const MatchState& s, std::size_t i, rc::Vec2 at, rc::Vec2 move) {
+  // Only with room to spare: in a corridor a bent way presses into the wall (giving way is what
+  // clears corridors).
+  const int cell = s.nav.cellAt(at);
+  if (cell < 0 || (s.nav.flags[static_cast<std::size_t>(cell)] & NavGrid::kRoomy) == 0) return move;
+  rc::Vec2 push{};
+  for (std::size_t j = 0; j < s.actors.size(); ++j) {
+    const Actor& other = s.actors[j];
+    if (j == i || !other.alive || other.team != s.actors[i].team) continue;
+    const rc::Vec2 d = at - s.centers[j];
+    const float d2 = rc::lengthSquared(d);
+    if (!(d2 < kPersonalSpace * kPersonalSpace) || !(d2 > 0.0f)) continue;
+    const float distance = std::sqrt(d2);
+    push += ((kPersonalSpace - distance) / (kPersonalSpace * distance)) * d;
+  }
+  if (push == rc::Vec2{}) return move;
+  const rc::Vec2 bent = move + kApartWeight * push;
+  return rc::lengthSquared(bent) > 1e-6f ? rc::normalize(bent) : move;
+}
+
 PlayerInput decide(MatchState& s, std::size_t i) {
   Actor& a = s.actors[i];
   BotMind& mind = s.minds[i];
-  const rc::Vec2 at = s.world->worldCenter(a.body);
+  const rc::Vec2 at = s.centers[i];
   mind.focus = strongestMemory(mind, s.tick);
   const Behaviour next = choose(s, i, at);
   if (next != mind.behaviour) {
@@ -370,6 +396,7 @@ PlayerInput decide(MatchState& s, std::size_t i) {
   mind.health = a.health;
   const bool barelyMoving = rc::lengthSquared(s.world->linearVelocity(a.body)) < 0.25f;
   mind.stuckTicks = move != rc::Vec2{} && barelyMoving ? mind.stuckTicks + 1 : 0;
+  if (move != rc::Vec2{}) move = keepApart(s, i, at, move);
   return makeInput(move, aim, buttons, 0);
 }
 
@@ -383,6 +410,10 @@ void perceive(MatchState& s, std::size_t i) {
 }  // namespace
 
 void decideBots(MatchState& s, std::span<const PlayerInput> inputs) {
+  // Where everyone is as the phase begins (nothing moves until it is over).
+  s.centers.resize(s.actors.size());
+  for (std::size_t i = 0; i < s.actors.size(); ++i)
+    s.centers[i] = s.world->worldCenter(s.actors[i].body);
   std::size_t player = 0;
   for (std::size_t i = 0; i < s.actors.size(); ++i) {
     Actor& a = s.actors[i];

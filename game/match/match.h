@@ -137,9 +137,11 @@ struct MatchState {
   std::vector<SightRay> sightRays;
   std::vector<HeardSound> heard;
   // Derived from the level, the same for every match on it (not hashed, not saved): where actors
-  // can walk. And the path search's scratch arrays.
+  // can walk. And scratch, rebuilt before each use: the path search's arrays, and the actors'
+  // centres as the decide phase began.
   NavGrid nav;
   PathSearch navSearch;
+  std::vector<rc::Vec2> centers;
 };
 
 // User data of the bodies and shapes a match creates (a level's carry levelUserData): a tag in

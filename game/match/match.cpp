@@ -28,6 +28,7 @@ Match::Match(Level level, const MatchConfig& config) {
   s_.world = std::make_unique<rc::World>(levelWorldDef(s_.level));
   s_.built = buildLevel(s_.level, *s_.world);
   s_.levelHash = levelContentHash(s_.level, s_.world->stateHash());
+  s_.nav = buildNavGrid(s_.level, s_.built, *s_.world, s_.tuning.radius);
   for (std::size_t i = 0; i < s_.level.objects.size(); ++i) {
     const LevelObject& o = s_.level.objects[i];
     const bool destructible = o.material.health > 0.0f;
@@ -49,7 +50,10 @@ void Match::tick(std::span<const PlayerInput> inputs) {
   s.shots.clear();
   s.explosions.clear();
   s.crashes.clear();
+  s.sightRays.clear();
+  s.heard.clear();
   decideBots(s, inputs);
+  s.sounds.clear();  // heard (or not) by now; this tick's are made from here on
   moveActors(s);
   fireWeapons(s);
   s.world->step(kTickSeconds);

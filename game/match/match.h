@@ -2,10 +2,15 @@
 // they do, advanced one fixed tick at a time.
 //
 // The tick reads top to bottom (Quake III's G_RunFrame is the model; Match::tick):
-//   decide      every bot (and every player on autopilot) fills its input from what it perceives
-//   move        actors accelerate towards what their input asks
+//   decide      every bot (and every player on autopilot) perceives: hears the sounds the last
+//               tick made, looks (sight cone and line-of-sight rays) every few ticks, staggered
+//               across bots; then fills its input from what it remembers (bots/brain.cpp: patrol,
+//               investigate, chase, attack, take cover, flee; paths on the navigation grid);
+//               then the last tick's sounds are forgotten
+//   move        actors accelerate towards what their input asks; running makes footsteps
 //   weapons     grenades whose fuse ran out explode; shots are ray casts through the world,
-//               now, before the bodies move (penetration, ricochets); grenades are thrown
+//               now, before the bodies move (penetration, ricochets); grenades are thrown; shots
+//               and blasts are heard
 //   physics     the world steps once (World::step)
 //   rules       the step's events: impacts, triggers (kill zones, exits), grenades' bounces;
 //               pickups taken and back; respawns due
@@ -22,6 +27,8 @@
 #include <string>
 #include <vector>
 
+#include "game/bots/bot_state.h"
+#include "game/bots/navigation.h"
 #include "game/level/level.h"
 #include "game/level/level_builder.h"
 #include "game/match/input.h"
@@ -167,17 +174,6 @@ struct Explosion {
   int bodiesPushed = 0;                // dynamic bodies it reached, actors included
 };
 
-// What a bot (or a player on autopilot) keeps between ticks: only what it perceived or chose.
-struct BotMind {
-  std::optional<std::size_t> target;  // the enemy it saw last
-  rc::Vec2 lastSeen{};                // where it saw it
-  std::int64_t lastSeenTick = -1;
-  rc::Vec2 goal{};             // where it is walking to when it sees no one
-  std::int64_t goalTick = -1;  // when it chose that goal
-  float strafe = 1.0f;         // which way it sidesteps while shooting
-  int stuckTicks = 0;          // ticks it has wanted to move and barely moved
-};
-
 struct MatchState;
 
 struct MatchConfig {
@@ -202,7 +198,10 @@ struct MatchState {
   std::unique_ptr<rc::World> world;
   BuiltLevel built;
   std::vector<Actor> actors;
-  std::vector<BotMind> minds;  // one per actor
+  // What bots keep between ticks (bots/bot_state.h lists every field): one mind per actor, and
+  // the sounds made during the last tick (the next decide phase hears them, then they are gone).
+  std::vector<BotMind> minds;
+  std::vector<Sound> sounds;
   std::vector<PropState> props;
   std::vector<PickupState> pickups;  // one per BuiltLevel::pickups, in order
   std::vector<TeamScore> teams;
@@ -212,6 +211,16 @@ struct MatchState {
   std::vector<Shot> shots;            // this tick's
   std::vector<Explosion> explosions;  // this tick's
   std::vector<Crash> crashes;         // this tick's
+  // For the view, this tick's perception (never read back by the simulation, so not state):
+  // the line-of-sight rays bots cast and the sounds they heard.
+  std::vector<SightRay> sightRays;
+  std::vector<HeardSound> heard;
+  // Derived from the level, the same for every match on it (not hashed, not saved): where actors
+  // can walk. And scratch, rebuilt before each use: the path search's arrays, and the actors'
+  // centres as the decide phase began.
+  NavGrid nav;
+  PathSearch navSearch;
+  std::vector<rc::Vec2> centers;
 };
 
 // User data of the bodies and shapes a match creates (a level's carry levelUserData): a tag in

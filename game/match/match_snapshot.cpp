@@ -6,6 +6,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "game/bots/bot_state.h"
 #include "physics/bytes.h"
 
 namespace game {
@@ -33,6 +34,9 @@ class Out {
     w_.f32(v.x);
     w_.f32(v.y);
   }
+  template <class E>
+  requires std::is_enum_v<E>
+  void operator()(const E& e) { w_.u8(static_cast<std::uint8_t>(e)); }
   // An index into a list of `size` items.
   void index(const std::size_t& v, std::size_t) { w_.u32(static_cast<std::uint32_t>(v)); }
   std::size_t count(std::size_t n, std::size_t) {
@@ -61,6 +65,10 @@ class In {
     v.x = r_.f32();
     v.y = r_.f32();
   }
+  // An enumeration's byte as it is; its range is checked with the struct it is in (checkMind).
+  template <class E>
+  requires std::is_enum_v<E>
+  void operator()(E& e) { e = static_cast<E>(r_.u8()); }
   void index(std::size_t& v, std::size_t size) {
     const std::uint32_t i = r_.u32();
     if (i >= size) fail("an index is " + std::to_string(i) + " of " + std::to_string(size));
@@ -99,6 +107,19 @@ void ioInput(A& a, auto& in) {
   a(in.weapon);
 }
 
+// What a mind's fields may hold: a hostile snapshot must not make the brain index past an array.
+template <class A>
+void checkMind(A& a, const BotMind& m, std::size_t actors) {
+  bool ok = m.behaviour <= Behaviour::flee && m.focus >= -1 &&
+            m.focus < static_cast<std::int32_t>(kMemorySlots) &&
+            m.route.length <= kRouteWaypoints && m.route.next <= m.route.length &&
+            m.route.partial <= 1;
+  for (const MemoryEntry& e : m.memory)
+    ok = ok && e.sense <= Sense::heard && e.actor >= -1 &&
+         e.actor < static_cast<std::int32_t>(actors);
+  if (!ok) a.fail("a bot's mind is out of range");
+}
+
 template <class A, class S>
 void io(A& a, S& s, std::size_t weapons) {
   a(s.tick);
@@ -128,22 +149,20 @@ void io(A& a, S& s, std::size_t weapons) {
       a(actor.ammo[w]);
     ioInput(a, actor.input);
   }
+  // Bots' minds and the last tick's sounds: their fields as bots/bot_state.h lists them.
+  auto field = [&](auto& v) { a(v); };
   for (auto& mind : s.minds) {
-    bool hasTarget = mind.target.has_value();
-    a(hasTarget);
-    if (hasTarget) {
-      std::size_t target = mind.target.value_or(0);
-      a.index(target, s.actors.size());
-      if constexpr (A::reading) mind.target = target;
-    } else if constexpr (A::reading) {
-      mind.target.reset();
-    }
-    a(mind.lastSeen);
-    a(mind.lastSeenTick);
-    a(mind.goal);
-    a(mind.goalTick);
-    a(mind.strafe);
-    a(mind.stuckTicks);
+    forEachField(mind, field);
+    if constexpr (A::reading) checkMind(a, mind, s.actors.size());
+  }
+  const std::size_t sounds = a.count(s.sounds.size(), 24);
+  if constexpr (A::reading) s.sounds.resize(sounds);
+  for (auto& sound : s.sounds) {
+    forEachField(sound, field);
+    if constexpr (A::reading)
+      if (sound.kind > SoundKind::explosion || sound.maker < -1 ||
+          sound.maker >= static_cast<std::int32_t>(s.actors.size()))
+        a.fail("a sound is out of range");
   }
   fixedCount(a, s.props.size(), "props");
   for (auto& prop : s.props) {
@@ -215,11 +234,12 @@ void restoreMatch(MatchState& s, std::span<const std::uint8_t> snapshot) {
       rc::Random rng;
       std::vector<Actor> actors;
       std::vector<BotMind> minds;
+      std::vector<Sound> sounds;
       std::vector<PropState> props;
       std::vector<PickupState> pickups;
       std::vector<TeamScore> teams;
       std::vector<Grenade> grenades;
-    } parts{s.tick, s.rng, s.actors, s.minds, s.props, s.pickups, s.teams, s.grenades};
+    } parts{s.tick, s.rng, s.actors, s.minds, s.sounds, s.props, s.pickups, s.teams, s.grenades};
     In a(r);
     io(a, parts, s.weapons.weapons.size());
     const std::size_t worldBytes = r.count(1);
@@ -230,6 +250,7 @@ void restoreMatch(MatchState& s, std::span<const std::uint8_t> snapshot) {
     s.rng = parts.rng;
     s.actors = std::move(parts.actors);
     s.minds = std::move(parts.minds);
+    s.sounds = std::move(parts.sounds);
     s.props = std::move(parts.props);
     s.pickups = std::move(parts.pickups);
     s.teams = std::move(parts.teams);
@@ -237,6 +258,8 @@ void restoreMatch(MatchState& s, std::span<const std::uint8_t> snapshot) {
     s.shots.clear();
     s.explosions.clear();
     s.crashes.clear();
+    s.sightRays.clear();
+    s.heard.clear();
   } catch (const std::invalid_argument& e) {
     throw MatchSnapshotError(e.what());
   }
@@ -326,6 +349,17 @@ std::vector<MatchDifference> compareMatches(const MatchState& a, const MatchStat
     add(who + " input", std::to_string(fnv1a(toBytes(x.input))),
         std::to_string(fnv1a(toBytes(y.input))));
   }
+  for (std::size_t i = 0; i < a.minds.size() && i < b.minds.size(); ++i) {
+    const BotMind &x = a.minds[i], &y = b.minds[i];
+    const std::string who = "actor " + std::to_string(i) + " ('" + a.actors[i].name + "') mind ";
+    add(who + "behaviour", behaviourName(x.behaviour), behaviourName(y.behaviour));
+    addInt(who + "focus", x.focus, y.focus);
+    addFloat(who + "goal x", x.goal.x, y.goal.x);
+    addFloat(who + "goal y", x.goal.y, y.goal.y);
+    addInt(who + "route length", x.route.length, y.route.length);
+  }
+  addInt("sounds", static_cast<std::int64_t>(a.sounds.size()),
+         static_cast<std::int64_t>(b.sounds.size()));
   for (std::size_t i = 0; i < a.props.size() && i < b.props.size(); ++i) {
     const PropState &x = a.props[i], &y = b.props[i];
     const std::string who = "prop " + bodyName(a, x.body);

@@ -350,6 +350,7 @@ render::Frame MatchView::draw(const MatchState& s, const MatchViewOptions& optio
       world.rect({lower, lower + rc::Vec2{fraction * w, h}}, Style::filled(healthColor(fraction)));
   }
   if (options.overlay) {
+    drawSounds(frame.overlay, s);
     for (std::size_t i = 0; i < s.actors.size(); ++i) {
       const Actor& a = s.actors[i];
       if (!a.alive) continue;

@@ -1,5 +1,7 @@
 #include "game/view/perception_view.h"
 
+#include "game/bots/memory.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -7,9 +9,6 @@
 
 namespace game {
 namespace {
-
-// How long a bot keeps after an enemy it no longer sees (game/bots/brain.cpp's memory).
-constexpr std::int64_t kRememberTicks = 3 * kTicksPerSecond;
 
 rc::Vec2 unit(float angle) {
   return {std::cos(angle), std::sin(angle)};
@@ -105,46 +104,53 @@ void cone(render::DrawList& list, rc::Vec2 apex, float range, float axis, float 
 
 }  // namespace
 
-Perception perceptionOf(const MatchState& s, std::size_t actor) {
+PerceptionOverlay perceptionOf(const MatchState& s, std::size_t actor) {
   const Actor& me = s.actors[actor];
   const BotMind& mind = s.minds[actor];
-  Perception p;
+  PerceptionOverlay p;
   p.at = s.world->worldCenter(me.body);
   p.aim = me.aim;
-  // Sight: a ray to every living enemy inside the cone and range (what sees() casts).
-  const rc::Vec2 facing = unit(me.aim);
-  const float cosLimit = std::cos(p.sight.halfAngle);
-  for (std::size_t i = 0; i < s.actors.size(); ++i) {
-    const Actor& other = s.actors[i];
-    if (i == actor || !other.alive || other.team == me.team) continue;
-    const rc::Vec2 to = s.world->worldCenter(other.body);
-    const float distance = rc::length(to - p.at);
-    if (distance > p.sight.range || rc::dot(facing, to - p.at) < cosLimit * distance) continue;
-    p.sightRays.push_back({p.at, to, sees(s, actor, i, p.sight)});
+  // Sight: the line-of-sight rays its look cast this tick (it looks every few ticks).
+  for (const SightRay& ray : s.sightRays)
+    if (ray.viewer == static_cast<std::int32_t>(actor))
+      p.sightRays.push_back({ray.from, ray.to, ray.clear});
+  // Hearing: where the sounds it heard this tick came from.
+  for (const HeardSound& h : s.heard)
+    if (h.listener == static_cast<std::int32_t>(actor)) p.heard.push_back(h.sound.position);
+  // The enemy it acts on: in sight (its latest look saw it) or remembered (where it expects it).
+  if (mind.focus >= 0) {
+    const MemoryEntry& entry = mind.memory[static_cast<std::size_t>(mind.focus)];
+    p.targetInSight = inSight(mind, entry);
+    p.target = p.targetInSight && entry.actor >= 0 &&
+                       static_cast<std::size_t>(entry.actor) < s.actors.size()
+                   ? s.world->worldCenter(s.actors[static_cast<std::size_t>(entry.actor)].body)
+                   : entry.position;
   }
-  // The enemy it is after: seen at its last decision, or remembered where it was last seen.
-  const bool after = mind.lastSeenTick >= 0 && s.tick - mind.lastSeenTick < kRememberTicks;
-  if (after) {
-    p.targetInSight = mind.lastSeenTick + 1 >= s.tick && mind.target &&
-                      *mind.target < s.actors.size() && s.actors[*mind.target].alive;
-    p.target = p.targetInSight ? s.world->worldCenter(s.actors[*mind.target].body) : mind.lastSeen;
-  } else if (mind.goalTick >= 0) {
+  if (mind.behaviour == Behaviour::patrol || mind.behaviour == Behaviour::takeCover ||
+      mind.behaviour == Behaviour::flee)
     p.goal = mind.goal;
+  // The path it follows: from where it is through the waypoints it has not reached.
+  if (mind.route.planned >= 0 && mind.route.next < mind.route.length) {
+    p.path.push_back(p.at);
+    for (std::size_t k = mind.route.next; k < mind.route.length; ++k)
+      p.path.push_back(mind.route.points[k]);
   }
-  // Hearing (hearingRadius, heard), memory and paths (path) come with the bots' senses.
   return p;
 }
 
-void drawPerception(render::DrawList& overlay, const Perception& p, render::Color team,
+void drawSounds(render::DrawList& overlay, const MatchState& s) {
+  for (const Sound& sound : s.sounds)
+    overlay.circle(sound.position, sound.radius,
+                   render::Style::outlined(palette::fade(palette::kSpark, 0.25f), 1.0f));
+}
+
+void drawPerception(render::DrawList& overlay, const PerceptionOverlay& p, render::Color team,
                     const rc::AABB& bounds, float pixel) {
   namespace pal = palette;
   cone(overlay, p.at, p.sight.range, p.aim, p.sight.halfAngle, bounds, team, 30.0f * pixel);
-  if (p.hearingRadius > 0.0f)
-    overlay.circle(p.at, p.hearingRadius,
-                   render::Style::outlined(pal::fade(pal::mix(team, pal::kSpark, 0.5f), 0.5f)));
   for (rc::Vec2 h : p.heard)
     overlay.dot(h, 2.5f, pal::mix(team, pal::kSpark, 0.5f));
-  for (const Perception::Ray& ray : p.sightRays)
+  for (const PerceptionOverlay::Ray& ray : p.sightRays)
     overlay.segment(ray.from, ray.to, ray.clear ? 1.5f : 1.0f,
                     ray.clear ? render::Color{120, 255, 140, 220} : render::Color{255, 90, 90, 70});
   if (p.path.size() >= 2) {

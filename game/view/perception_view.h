@@ -1,7 +1,7 @@
 // What the overlay shows of what an actor perceives: its sight cone, the line-of-sight rays its
-// sight casts, the enemy it is after, where it is walking; and the slots for the senses still to
-// come (hearing, memory, paths), so that each is a line in perceptionOf and nothing in the
-// drawing. Players on autopilot perceive like bots and are shown alike.
+// look cast, where it heard sounds, the enemy it acts on (seen or remembered), where it walks and
+// the path there; and every sound's hearing circle. Players on autopilot perceive like bots and
+// are shown alike.
 #pragma once
 
 #include <cstddef>
@@ -14,7 +14,7 @@
 
 namespace game {
 
-struct Perception {
+struct PerceptionOverlay {
   rc::Vec2 at{};     // the actor's centre
   float aim = 0.0f;  // radians: the cone's axis
   SightTuning sight;
@@ -26,19 +26,21 @@ struct Perception {
   std::optional<rc::Vec2> target;  // where the enemy it is after is (seen) or was (remembered)
   bool targetInSight = false;
   std::optional<rc::Vec2> goal;  // where it walks while it is after no one
-  float hearingRadius = 0.0f;    // m; 0: no hearing circle
   std::vector<rc::Vec2> heard;   // where it heard something
   std::vector<rc::Vec2> path;    // the route it follows, from where it is
 };
 
-// Read from the match as the bots keep it today (game/bots: sight, BotMind), for a living actor.
-// A player driven by recorded input has a mind the autopilot no longer updates: its target and
-// goal are stale, its cone and rays still true.
-Perception perceptionOf(const MatchState& s, std::size_t actor);
+// Read from the match as the bots keep it (game/bots/bot_state.h: this tick's sight rays and
+// hearings, the mind's focus, goal and route), for a living actor. A player driven by given
+// input perceives and decides all the same (the autopilot's choice is replaced): shown alike.
+PerceptionOverlay perceptionOf(const MatchState& s, std::size_t actor);
+
+// Hearing circles: every sound made this tick, as far as it carries in the open (walls halve it).
+void drawSounds(render::DrawList& overlay, const MatchState& s);
 
 // Into the overlay, in the actor's team colour, the sight cone cut to `bounds` (the level's);
 // `pixel` is a pixel's size in metres.
-void drawPerception(render::DrawList& overlay, const Perception& p, render::Color team,
+void drawPerception(render::DrawList& overlay, const PerceptionOverlay& p, render::Color team,
                     const rc::AABB& bounds, float pixel);
 
 }  // namespace game

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "game/bots/hearing.h"
 #include "game/rules/damage.h"
 #include "game/rules/impacts.h"
 
@@ -50,6 +51,7 @@ void explode(MatchState& s, rc::Vec2 center, const GrenadeSpec& grenade, std::si
       damageProp(s, level->index, grenade.blastDamage * share);
     }
   }
+  makeSound(s, SoundKind::explosion, thrower, center, kExplosionRadius);
   s.explosions.push_back(std::move(e));
 }
 

@@ -15,7 +15,7 @@
 namespace game {
 
 // The blast of a grenade of spec `grenade` at `center`, thrown by `thrower` (credited with the
-// kills): applied now, recorded in MatchState::explosions.
+// kills): applied now, recorded in MatchState::explosions, heard (bots/hearing.h).
 void explode(MatchState& s, rc::Vec2 center, const GrenadeSpec& grenade, std::size_t thrower);
 
 }  // namespace game

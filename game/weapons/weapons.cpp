@@ -1,7 +1,10 @@
 // The weapons phase: grenades whose fuse has run out explode (against the world as the last step
 // left it), then every living actor whose input pulls the trigger fires the weapon it selected,
-// or throws a grenade, if it is ready and loaded. Shots are taken now, before the step.
+// or throws a grenade, if it is ready and loaded. Shots are taken now, before the step, and heard
+// (bots/hearing.h: kShotRadius from the shooter); a throw is silent, its blast is not.
 #include "game/weapons/weapons.h"
+
+#include "game/bots/hearing.h"
 
 namespace game {
 
@@ -39,6 +42,8 @@ void fireWeapons(MatchState& s) {
     a.cooldown = s.weapons.weapons[*weapon].cooldownTicks;
     --a.ammo[*weapon];
     fireWeapon(s, i, *weapon);
+    if (s.weapons.weapons[*weapon].kind == WeaponKind::hitscan)
+      makeSound(s, SoundKind::shot, i, s.world->worldCenter(a.body), kShotRadius);
   }
 }
 

@@ -1,6 +1,7 @@
 // The match (game/match, bots, weapons, rules) on small levels built in code: inputs recorded
 // exactly, sight cones to the edge, hitscan damage against its closed form, death and respawn
 // at the spawn farthest from enemies, trigger zones, and the same seed giving the same hashes.
+// Bots' perception and behaviours have their own tests (bots_test.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -115,34 +116,6 @@ TEST(Sight, ConeEdgesRangeAndWalls) {
   Match open(room({-5, 0}, {{5, 0}}, false), config(1));
   open.state().actors[1].aim = rc::kPi;
   EXPECT_TRUE(game::sees(open.state(), 1, 0));
-}
-
-// Bots act on what they perceive alone: over a minute of a bot wandering a room with a silent
-// player standing still (behind a wall, or in the open), the bot pulls the trigger only in ticks
-// where, as the tick began, it saw the player; a player behind it is never shot at.
-TEST(Bots, ShootOnlyAtWhatTheySee) {
-  for (const bool wall : {false, true}) {
-    Match m(room({8, 0}, {{-4, 0}}, wall), config(1, 3));
-    game::MatchState& s = m.state();
-    s.actors[1].aim = rc::kPi;  // facing away from the player
-    const std::vector<PlayerInput> still{PlayerInput{}};
-    int fired = 0, seen = 0;
-    for (int t = 0; t < 60 * game::kTicksPerSecond && s.actors[0].alive; ++t) {
-      const bool sawIt = game::sees(s, 1, 0);
-      seen += sawIt;
-      m.tick(still);
-      const bool fires = (s.actors[1].input.buttons & game::kButtonFire) != 0;
-      fired += fires;
-      ASSERT_TRUE(!fires || sawIt) << "wall " << wall << " tick " << t;
-      if (t == 0) {
-        EXPECT_FALSE(fires);  // behind it at first
-      }
-    }
-    if (!wall) {
-      EXPECT_GT(fired, 0);  // in the open it finds the player sooner or later
-    }
-    EXPECT_EQ(fired > 0, seen > 0);
-  }
 }
 
 // A rifle shot loses damage linearly from falloffStart to falloffEnd; the target's health drops

@@ -1,0 +1,69 @@
+#include "game/bots/hearing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "game/bots/memory.h"
+#include "game/bots/navigation.h"
+
+namespace game {
+
+void makeSound(MatchState& s, SoundKind kind, std::size_t maker, rc::Vec2 position, float radius) {
+  Sound sound;
+  sound.kind = kind;
+  sound.maker = static_cast<std::int32_t>(maker);
+  sound.team = s.actors[maker].team;
+  sound.position = position;
+  sound.radius = radius;
+  s.sounds.push_back(sound);
+}
+
+void makeFootstep(MatchState& s, std::size_t actor, float speed) {
+  if (speed < kSilentSpeed || (s.tick + static_cast<std::int64_t>(actor)) % kStrideTicks != 0)
+    return;
+  makeSound(s, SoundKind::footstep, actor, s.world->worldCenter(s.actors[actor].body),
+            kFootstepSeconds * speed);
+}
+
+int wallsBetween(const MatchState& s, rc::Vec2 from, rc::Vec2 to, int limit) {
+  if (limit <= 0) return 0;
+  const rc::QueryFilter walls = staticSolids(*s.world);
+  if (limit == 1) return s.world->castRay(from, to - from, walls) ? 1 : 0;
+  const std::vector<rc::WorldHit> hits = s.world->castRayAll(from, to - from, walls);
+  return static_cast<int>(std::min<std::size_t>(hits.size(), static_cast<std::size_t>(limit)));
+}
+
+std::optional<int> hears(const MatchState& s, std::size_t listener, const Sound& sound) {
+  const Actor& me = s.actors[listener];
+  if (!me.alive || sound.maker == static_cast<std::int32_t>(listener) || sound.team == me.team)
+    return std::nullopt;
+  const rc::Vec2 at = s.world->worldCenter(me.body);
+  const float distance = rc::distance(at, sound.position);
+  if (!(distance <= sound.radius)) return std::nullopt;
+  // Walls it can afford: the largest k with distance <= radius / 2^k; one more makes it
+  // inaudible, so counting stops there.
+  int affordable = 0;
+  for (float r = sound.radius * 0.5f; distance <= r && affordable < 30; r *= 0.5f)
+    ++affordable;
+  const int walls = wallsBetween(s, sound.position, at, affordable + 1);
+  if (walls > affordable) return std::nullopt;
+  return walls;
+}
+
+void listen(MatchState& s, std::size_t listener) {
+  for (const Sound& sound : s.sounds) {
+    const std::optional<int> walls = hears(s, listener, sound);
+    if (!walls) continue;
+    Perception p;
+    p.actor = sound.maker;
+    p.sense = Sense::heard;
+    p.position = sound.position;
+    p.strength = kHeardStrength;
+    remember(s.minds[listener], p, s.tick);
+    s.heard.push_back(
+        {static_cast<std::int32_t>(listener), sound, *walls, std::ldexp(sound.radius, -*walls)});
+  }
+}
+
+}  // namespace game

@@ -24,6 +24,7 @@
 // for ever). A bot turns at
 // most kTurnRate: its view cone, and so what it can see, follows its aim.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "game/bots/cover.h"
@@ -418,7 +419,14 @@ void decideBots(MatchState& s, std::span<const PlayerInput> inputs) {
   for (std::size_t i = 0; i < s.actors.size(); ++i) {
     Actor& a = s.actors[i];
     if (a.alive) {
-      perceive(s, i);
+      if (s.config.profile) {
+        const auto start = std::chrono::steady_clock::now();
+        perceive(s, i);
+        s.profile.perception +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      } else {
+        perceive(s, i);
+      }
       a.input = decide(s, i);
     } else {
       a.input = PlayerInput{};

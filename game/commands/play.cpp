@@ -9,6 +9,7 @@
 // (game/view/match_frames.h); progress goes to stderr on long runs.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <exception>
@@ -53,6 +54,10 @@ int runPlay(std::span<const std::string_view> args) {
       ->check(CLI::Range(0LL, 1LL << 31));
   app.add_option("--weapons", weaponsPath, "the weapon table (default: the bundled one)");
   app.add_flag("--json", json, "the summary as a JSON object");
+  bool profile = false;
+  app.add_flag("--profile", profile,
+               "a second line: the tick's phases in microseconds per tick and their shares "
+               "(perception, decisions, movement, weapons, physics, rules)");
   std::string recordPath, inputPath;
   app.add_option("--input", inputPath,
                  "the players' controls from a script (FILE, or - for standard input; the format "
@@ -90,6 +95,7 @@ int runPlay(std::span<const std::string_view> args) {
     config.bots = bots;
     config.players = players;
     config.seed = seed;
+    config.profile = profile;
     config.weapons = loadWeaponTable(weaponsPath);
     Match match(loadLevel(levelPath), config);
     std::ifstream scriptFile;
@@ -174,6 +180,23 @@ int runPlay(std::span<const std::string_view> args) {
           "%zu exits %d suicides %d score %s hash %016llx ticks_per_second %.0f\n",
           ticks, match.state().actors.size(), kills, deaths, shots, explosions, pickups, crashes,
           exits, suicides, scores.empty() ? "-" : scores.c_str(), hash, rate);
+    }
+    if (profile) {
+      const MatchProfile& p = match.state().profile;
+      const double total = p.total(),
+                   perTick = 1e6 / static_cast<double>(std::max<std::int64_t>(1, p.ticks));
+      auto phase = [&](const char* name, double spent) {
+        std::printf(" %s %.2f (%.0f%%)", name, spent * perTick,
+                    total > 0.0 ? 100.0 * spent / total : 0.0);
+      };
+      std::printf("profile us_per_tick");
+      phase("perception", p.perception);
+      phase("decisions", p.decisions);
+      phase("movement", p.movement);
+      phase("weapons", p.weapons);
+      phase("physics", p.physics);
+      phase("rules", p.rules);
+      std::printf(" total %.2f\n", total * perTick);
     }
     return 0;
   } catch (const FrameOutputError& e) {

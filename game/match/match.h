@@ -182,9 +182,21 @@ struct MatchConfig {
   std::uint64_t seed = 1;  // the match's randomness (aim error, spawn choices)
   // The weapons; none: the bundled table (bundledWeaponTablePath()), and an error if it is bad.
   std::optional<WeaponTable> weapons;
+  // Time each phase of the tick into MatchState::profile (a clock read around each phase, about
+  // 1% of a tick; off by default).
+  bool profile = false;
   // Called at the end of every tick, for tests only: state kept here is hidden from snapshots
   // and hashes, which is what `replay --synctest` exists to catch.
   std::function<void(MatchState&)> testHook;
+};
+
+// Where a tick's time goes (MatchConfig::profile), summed over the ticks played: decide split
+// into the bots' senses (perception: sight rays, hearing) and what they do with them (decisions:
+// memory, behaviours, paths), then the tick's other phases. Not state: never saved or hashed.
+struct MatchProfile {
+  double perception = 0, decisions = 0, movement = 0, weapons = 0, physics = 0, rules = 0;  // s
+  std::int64_t ticks = 0;
+  double total() const { return perception + decisions + movement + weapons + physics + rules; }
 };
 
 // The whole match, open to the phase functions of game/ (each phase is a file of its own).
@@ -215,6 +227,7 @@ struct MatchState {
   // the line-of-sight rays bots cast and the sounds they heard.
   std::vector<SightRay> sightRays;
   std::vector<HeardSound> heard;
+  MatchProfile profile;
   // Derived from the level, the same for every match on it (not hashed, not saved): where actors
   // can walk. And scratch, rebuilt before each use: the path search's arrays, and the actors'
   // centres as the decide phase began.

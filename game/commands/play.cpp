@@ -54,6 +54,11 @@ int runPlay(std::span<const std::string_view> args) {
       ->check(CLI::Range(0LL, 1LL << 31));
   app.add_option("--weapons", weaponsPath, "the weapon table (default: the bundled one)");
   app.add_flag("--json", json, "the summary as a JSON object");
+  int lanes = 8;
+  app.add_option("--lanes", lanes,
+                 "the contact solver's batch width, 4 or 8 (the widest the processor has); the "
+                 "match is the same at either")
+      ->check(CLI::IsMember({4, 8}));
   bool profile = false;
   app.add_flag("--profile", profile,
                "a second line: the tick's phases in microseconds per tick and their shares "
@@ -96,6 +101,7 @@ int runPlay(std::span<const std::string_view> args) {
     config.players = players;
     config.seed = seed;
     config.profile = profile;
+    config.solverLanes = lanes;
     config.weapons = loadWeaponTable(weaponsPath);
     Match match(loadLevel(levelPath), config);
     std::ifstream scriptFile;

@@ -26,7 +26,9 @@ Match::Match(Level level, const MatchConfig& config) {
   s_.config = config;
   s_.rng = rc::Random(config.seed);
   s_.weapons = config.weapons ? *config.weapons : loadWeaponTable(bundledWeaponTablePath());
-  s_.world = std::make_unique<rc::World>(levelWorldDef(s_.level));
+  rc::WorldDef def = levelWorldDef(s_.level);
+  def.maxSolverLanes = config.solverLanes;
+  s_.world = std::make_unique<rc::World>(def);
   s_.built = buildLevel(s_.level, *s_.world);
   s_.levelHash = levelContentHash(s_.level, s_.world->stateHash());
   s_.nav = buildNavGrid(s_.level, s_.built, *s_.world, s_.tuning.radius);

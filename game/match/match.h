@@ -182,6 +182,9 @@ struct MatchConfig {
   std::uint64_t seed = 1;  // the match's randomness (aim error, spawn choices)
   // The weapons; none: the bundled table (bundledWeaponTablePath()), and an error if it is bad.
   std::optional<WeaponTable> weapons;
+  // The contact solver's batch width, 4 or 8 (WorldDef::maxSolverLanes): the same match at
+  // either; a test checks it.
+  int solverLanes = 8;
   // Time each phase of the tick into MatchState::profile (a clock read around each phase, about
   // 1% of a tick; off by default).
   bool profile = false;

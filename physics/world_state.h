@@ -217,6 +217,11 @@ class WorldState {
   void applyRestitution();
   template <class Solve>
   void forEachBouncy(Solve&& solve);
+  // A manifold point's part in restitution: not pushed (left alone), bouncing, or holding (see
+  // applyRestitution).
+  enum class Bounce : std::uint8_t { none, bounces, holds };
+  bool bounceTogether(ContactConstraint& cc, const Bounce (&roles)[2], Vec2& vA, float& wA,
+                      Vec2& vB, float& wB);
   void prepareBounceGroups();
   void measureContactWork();
   void limitBounceEnergy();

@@ -221,7 +221,10 @@ void WorldState::prepareBounceGroups() {
   auto single = [&](std::int32_t slot) {
     if (slot < 0) return true;
     const auto s = static_cast<std::size_t>(slot);
-    return counted ? slotDegree_[s] == 1 : std::has_single_bit(colours[s]);
+    // (One bit set, without std::has_single_bit: the baseline x86-64 has no POPCNT, and it
+    // became a library call.)
+    const std::uint32_t bits = colours[s];
+    return counted ? slotDegree_[s] == 1 : bits != 0 && (bits & (bits - 1)) == 0;
   };
   // Per constraint: -2 if lone (or moving nothing), else -1, then its root slot, then its
   // group.

@@ -202,7 +202,12 @@ void WorldState::narrowphase(float dt) {
     const Transform xfB{{static_cast<float>(preciseOrigin(bodyB, 0) - preciseOrigin(bodyA, 0)),
                          static_cast<float>(preciseOrigin(bodyB, 1) - preciseOrigin(bodyA, 1))},
                         bodyB.xf.q};
-    const Manifold old = c.manifold;
+    // What the warm start matches by: last step's point ids (the whole manifold copied was a
+    // sixth of this loop in a pyramid) and impulses.
+    const int oldCount = c.manifold.pointCount;
+    std::uint16_t oldIds[2] = {};
+    for (int j = 0; j < oldCount; ++j)
+      oldIds[j] = c.manifold.points[j].id;
     const float oldNormal[2] = {c.normalImpulse[0], c.normalImpulse[1]};
     const float oldTangent[2] = {c.tangentImpulse[0], c.tangentImpulse[1]};
     const float margin = def_.continuous
@@ -234,14 +239,18 @@ void WorldState::narrowphase(float dt) {
     }
     for (int k = 0; k < c.manifold.pointCount; ++k)
       c.manifold.points[k].point += bodyA.xf.p;
-    // Warm start: a point keeps last step's impulses when the same features touch.
+    // Warm start: a point keeps last step's impulses when the same features touch. (Each
+    // point's pair written once: zeroed first, the two were two calls to memset, a variable
+    // length to the compiler, a seventh of this loop.)
     for (int k = 0; k < c.manifold.pointCount; ++k) {
-      c.normalImpulse[k] = c.tangentImpulse[k] = 0.0f;
-      for (int j = 0; j < old.pointCount; ++j)
-        if (old.points[j].id == c.manifold.points[k].id) {
-          c.normalImpulse[k] = oldNormal[j];
-          c.tangentImpulse[k] = oldTangent[j];
+      float normal = 0.0f, tangent = 0.0f;
+      for (int j = 0; j < oldCount; ++j)
+        if (oldIds[j] == c.manifold.points[k].id) {
+          normal = oldNormal[j];
+          tangent = oldTangent[j];
         }
+      c.normalImpulse[k] = normal;
+      c.tangentImpulse[k] = tangent;
     }
     const bool was = c.touching;
     c.touching = c.manifold.pointCount > 0;

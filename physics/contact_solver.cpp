@@ -126,6 +126,36 @@ RC_INLINE BodyLanes<N> gather(const SolverBody* bodies, const std::int32_t (&ind
   return out;
 }
 
+// Body k's velocity from rows of three floats a body (vx, vy, w), loaded as four (the fourth,
+// the next body's vx or the padding after the last row, is not used), and with eight lanes body
+// k + 4's beside it: row k of the matrix transpose() turns into lanes.
+RC_INLINE simd::F loadVelocityRow(const float* rows, std::int32_t body) {
+  simd::F row;
+  std::memcpy(&row, rows + 3 * static_cast<std::ptrdiff_t>(body), sizeof row);
+  return row;
+}
+template <int N>
+RC_INLINE typename simd::Lanes<N>::F loadVelocityRow(const float* rows,
+                                                     const std::int32_t (&index)[N], int k) {
+  const simd::F low = loadVelocityRow(rows, index[k]);
+  if constexpr (N == 4) {
+    return low;
+  } else {
+    const simd::F high = loadVelocityRow(rows, index[k + 4]);
+    return __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7);
+  }
+}
+template <int N>
+RC_INLINE BodyLanes<N> gatherVelocities(const float* rows, const std::int32_t (&index)[N]) {
+  BodyLanes<N> out;
+  out.vx = loadVelocityRow(rows, index, 0);
+  out.vy = loadVelocityRow(rows, index, 1);
+  out.w = loadVelocityRow(rows, index, 2);
+  out.pad = loadVelocityRow(rows, index, 3);
+  transpose(out.vx, out.vy, out.w, out.pad);
+  return out;
+}
+
 // Lanes are written in order; lanes sharing a body (the null body, a kinematic body) hold the
 // same unchanged velocity, so the order does not matter. Only the first half is written.
 template <int N, class F>
@@ -169,7 +199,7 @@ struct Velocities {
 };
 
 template <int N>
-RC_INLINE void warmStartBatch(Batch<N>& c, SolverBody* bodies, const SolverBody* free) {
+RC_INLINE void warmStartBatch(Batch<N>& c, SolverBody* bodies, const float* free) {
   using F = typename simd::Lanes<N>::F;
   const BodyLanes<N> A = gather<N, false>(bodies, c.a), B = gather<N, false>(bodies, c.b);
   Velocities<N> v{A.vx, A.vy, A.w, B.vx, B.vy, B.w};
@@ -184,7 +214,7 @@ RC_INLINE void warmStartBatch(Batch<N>& c, SolverBody* bodies, const SolverBody*
   // neighbouring contacts and are not an approach: restitution on those fed a cluster of
   // overlapping circles energy, step after step.
   if (free != nullptr) {
-    const BodyLanes<N> fA = gather<N, false>(free, c.a), fB = gather<N, false>(free, c.b);
+    const BodyLanes<N> fA = gatherVelocities<N>(free, c.a), fB = gatherVelocities<N>(free, c.b);
     const Velocities<N> fv{fA.vx, fA.vy, fA.w, fB.vx, fB.vy, fB.w};
     for (int k = 0; k < c.points; ++k) {
       PointLanes<N>& p = c.p[k];
@@ -340,8 +370,7 @@ RC_INLINE void solveBatch(Batch<N>& c, SolverBody* bodies, const ContactSoftness
 // The passes over every batch, inlined into one function per lane count: four lanes in the
 // baseline instruction set, eight in a function compiled for AVX2 (chosen at run time).
 template <int N>
-RC_INLINE void warmStartAll(std::span<Batch<N>> batches, SolverBody* bodies,
-                            const SolverBody* free) {
+RC_INLINE void warmStartAll(std::span<Batch<N>> batches, SolverBody* bodies, const float* free) {
   for (Batch<N>& b : batches)
     warmStartBatch(b, bodies, free);
 }
@@ -357,7 +386,7 @@ RC_INLINE void solveAll(std::span<Batch<N>> batches, SolverBody* bodies,
   }
 }
 
-void warmStart4(std::span<Batch<4>> batches, SolverBody* bodies, const SolverBody* free) {
+void warmStart4(std::span<Batch<4>> batches, SolverBody* bodies, const float* free) {
   warmStartAll(batches, bodies, free);
 }
 void solve4(std::span<Batch<4>> batches, SolverBody* bodies, const ContactSoftness& soft,
@@ -367,7 +396,7 @@ void solve4(std::span<Batch<4>> batches, SolverBody* bodies, const ContactSoftne
 
 #if RC_HAVE_AVX2_PATHS
 [[gnu::target("avx2")]] void warmStart8(std::span<Batch<8>> batches, SolverBody* bodies,
-                                        const SolverBody* free) {
+                                        const float* free) {
   warmStartAll(batches, bodies, free);
 }
 [[gnu::target("avx2")]] void solve8(std::span<Batch<8>> batches, SolverBody* bodies,
@@ -571,6 +600,9 @@ int ContactSolver::colourCount() const {
 int ContactSolver::overflowCount() const {
   return data_->overflow;
 }
+std::span<const std::uint32_t> ContactSolver::bodyColours() const {
+  return data_->bodyColours;
+}
 int ContactSolver::laneCount() const {
   return data_->lanes;
 }
@@ -645,9 +677,9 @@ void ContactSolver::computeMasses() {
   masses4(d.batches4);
 }
 
-void ContactSolver::warmStart(std::span<SolverBody> bodies, std::span<const SolverBody> free) {
+void ContactSolver::warmStart(std::span<SolverBody> bodies, std::span<const float> free) {
   Data& d = *data_;
-  const SolverBody* approach = free.empty() ? nullptr : free.data();
+  const float* approach = free.empty() ? nullptr : free.data();
 #if RC_HAVE_AVX2_PATHS
   if (d.lanes == 8) {
     warmStart8(d.batches8, bodies.data(), approach);

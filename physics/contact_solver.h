@@ -106,10 +106,12 @@ class ContactSolver {
   // two points can be solved together, their coupled mass and its inverse; a batch at a time
   // (scalar, with its divisions, this was a tenth of a pyramid's step).
   void computeMasses();
-  // Applies the carried impulses. With `free` (the bodies' velocities before any warm start,
-  // laid out like `bodies`), first lowers each point not yet pushed to its normal velocity there
-  // (relativeVelocity: the approach speed restitution reverses); empty: no restitution to feed.
-  void warmStart(std::span<SolverBody> bodies, std::span<const SolverBody> free);
+  // Applies the carried impulses. With `free` (the bodies' velocities before any warm start:
+  // vx, vy and w of each body, the null body's zeros after them, and one float more, read but
+  // not used, for a body's three are loaded as four), first lowers each point not yet pushed to
+  // its normal velocity there (relativeVelocity: the approach speed restitution reverses);
+  // empty: no restitution to feed.
+  void warmStart(std::span<SolverBody> bodies, std::span<const float> free);
   // One pass of normal (the two points of a manifold together where that is well posed) and
   // friction impulses. useBias: push overlapping points apart (the relax pass has no bias).
   // backward: the colours in reverse order. Gauss-Seidel in one fixed order favours one side:
@@ -125,7 +127,11 @@ class ContactSolver {
 
   int colourCount() const;    // colours in use
   int overflowCount() const;  // constraints solved one at a time
-  int laneCount() const;      // constraints per batch in the last prepare(): 4 or 8
+  // Per body (as prepare() numbered them): the colours its constraints took, a bit each. With
+  // no overflow, a body moved by k constraints has k bits: two constraints of a colour never
+  // move one body.
+  std::span<const std::uint32_t> bodyColours() const;
+  int laneCount() const;  // constraints per batch in the last prepare(): 4 or 8
 
   // The widest batch this processor takes: 8 (one AVX2 register) where it has AVX2, else 4
   // (SSE2, NEON). Either width gives bit-identical results.

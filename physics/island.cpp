@@ -33,6 +33,8 @@ void World::wake(BodyId id) {
 }
 
 void WorldState::updateSleep(float dt) {
+  // With sleeping off every still time stays 0 (nothing else raises one): nothing to do.
+  if (!def_.enableSleep) return;
   const auto n = static_cast<std::size_t>(awakeCount_);
   const float lin2 = def_.linearSleepTolerance * def_.linearSleepTolerance;
   const float ang2 = def_.angularSleepTolerance * def_.angularSleepTolerance;
@@ -47,7 +49,7 @@ void WorldState::updateSleep(float dt) {
     Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
     const float v2 = v_[3 * s] * v_[3 * s] + v_[3 * s + 1] * v_[3 * s + 1];
     const float w2 = v_[3 * s + 2] * v_[3 * s + 2];
-    const bool slow = def_.enableSleep && b.allowSleep && v2 <= lin2 && w2 <= ang2;
+    const bool slow = b.allowSleep && v2 <= lin2 && w2 <= ang2;
     if (!slow) {
       b.sleepTime = 0.0f;
       continue;
@@ -66,7 +68,7 @@ void WorldState::updateSleep(float dt) {
       from[1] = q_[3 * s + 1];
     }
   }
-  if (!def_.enableSleep || n == 0) return;
+  if (n == 0) return;
   // Islands: awake dynamic bodies joined by touching contacts (union-find over slots).
   islandParent_.resize(n);
   for (std::size_t s = 0; s < n; ++s)

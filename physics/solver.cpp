@@ -49,21 +49,6 @@ void WorldState::accelerations(std::span<const double> q, std::span<const float>
   }
 }
 
-template <class Solve>
-void WorldState::forEachBouncy(Solve&& solve) {
-  for (ContactConstraint& cc : bouncy_) {
-    Vec2 vA{}, vB{};
-    float wA = 0.0f, wB = 0.0f;
-    const std::size_t iA = 3 * static_cast<std::size_t>(std::max(cc.slotA, 0));
-    const std::size_t iB = 3 * static_cast<std::size_t>(std::max(cc.slotB, 0));
-    if (cc.slotA >= 0) vA = {v_[iA], v_[iA + 1]}, wA = v_[iA + 2];
-    if (cc.slotB >= 0) vB = {v_[iB], v_[iB + 1]}, wB = v_[iB + 2];
-    solve(cc, vA, wA, vB, wB);
-    if (cc.slotA >= 0) v_[iA] = vA.x, v_[iA + 1] = vA.y, v_[iA + 2] = wA;
-    if (cc.slotB >= 0) v_[iB] = vB.x, v_[iB + 1] = vB.y, v_[iB + 2] = wB;
-  }
-}
-
 // The solve, as its stages. A substep moves every awake body as if nothing touched it (free
 // motion), then the contacts change the velocities (warm start, solve with the soft push-out
 // bias), the positions follow the change, and a relax pass without bias takes out the push-out's
@@ -105,9 +90,14 @@ void WorldState::prepareContacts() {
   bouncyIndex_.clear();
   tracked_.clear();
   profile_.colours = profile_.overflow = 0;
+  // The last step's overlap counts back to zero (only the slots it counted: clearing every
+  // slot each step was a memset of the awake bodies).
+  for (const std::int32_t slot : overlapping_)
+    slotOverlaps_[static_cast<std::size_t>(slot)] = 0;
+  overlapping_.clear();
   if (awakeCount_ == 0) return;
-  // anyDeep: a contact overlapping past the slop; shared: a body with two of them.
-  bool anyDeep = false, shared = false;
+  // shared: a body with two contacts overlapping past the slop.
+  bool shared = false;
   for (std::size_t ci = 0; ci < contacts_.size(); ++ci) {
     const Contact& c = contacts_[ci];
     if (!c.touching) continue;
@@ -124,15 +114,19 @@ void WorldState::prepareContacts() {
     // The push-out speed is a body's, not each contact's: a body overlapping k others past the
     // slop is pushed out of each at 1/k of it, so that together they push it no faster than the
     // push-out speed (what the relax pass cannot take back of a push stays in the body as
-    // speed). The counts start at the first such contact.
+    // speed).
     const float deepest = c.manifold.pointCount == 2 ? std::min(c.manifold.points[0].separation,
                                                                 c.manifold.points[1].separation)
                                                      : c.manifold.points[0].separation;
     if (deepest < -kLinearSlop) {
-      if (!anyDeep) slotOverlaps_.assign(static_cast<std::size_t>(awakeCount_), 0);
-      anyDeep = true;
-      for (const std::int32_t slot : {movesA ? slotA : -1, movesB ? slotB : -1})
-        if (slot >= 0) shared = ++slotOverlaps_[static_cast<std::size_t>(slot)] > 1 || shared;
+      if (slotOverlaps_.size() < static_cast<std::size_t>(awakeCount_))
+        slotOverlaps_.resize(static_cast<std::size_t>(awakeCount_), 0);
+      for (const std::int32_t slot : {movesA ? slotA : -1, movesB ? slotB : -1}) {
+        if (slot < 0) continue;
+        std::int32_t& count = slotOverlaps_[static_cast<std::size_t>(slot)];
+        if (count == 0) overlapping_.push_back(slot);
+        shared = ++count > 1 || shared;
+      }
     }
   }
   contactSolver_.prepare(constraintBodies_, awakeCount_, def_.maxSolverLanes);
@@ -209,15 +203,29 @@ void WorldState::prepareBounceGroups() {
   // A side the contacts move (a dynamic body awake), else -1.
   auto movingA = [](const ConstraintBodies& cb) { return cb.movesA ? cb.slotA : -1; };
   auto movingB = [](const ConstraintBodies& cb) { return cb.movesB ? cb.slotB : -1; };
-  // How many constraints each slot has, 2 standing for more.
-  slotDegree_.assign(static_cast<std::size_t>(awakeCount_), 0);
-  for (const ConstraintBodies& cb : constraintBodies_) {
-    for (const std::int32_t slot : {movingA(cb), movingB(cb)}) {
-      if (slot < 0) continue;
-      std::uint8_t& count = slotDegree_[static_cast<std::size_t>(slot)];
-      count = count < 2 ? static_cast<std::uint8_t>(count + 1) : count;
+  // Whether a side is the only constraint on its slot: the colouring already counted them
+  // (a slot moved by k constraints took k colours), unless some overflowed; then they are
+  // counted here, 2 standing for more.
+  const std::span<const std::uint32_t> colours = contactSolver_.bodyColours();
+  const bool counted = contactSolver_.overflowCount() > 0;
+  if (counted) {
+    slotDegree_.assign(static_cast<std::size_t>(awakeCount_), 0);
+    for (const ConstraintBodies& cb : constraintBodies_) {
+      for (const std::int32_t slot : {movingA(cb), movingB(cb)}) {
+        if (slot < 0) continue;
+        std::uint8_t& count = slotDegree_[static_cast<std::size_t>(slot)];
+        count = count < 2 ? static_cast<std::uint8_t>(count + 1) : count;
+      }
     }
   }
+  auto single = [&](std::int32_t slot) {
+    if (slot < 0) return true;
+    const auto s = static_cast<std::size_t>(slot);
+    // (One bit set, without std::has_single_bit: the baseline x86-64 has no POPCNT, and it
+    // became a library call.)
+    const std::uint32_t bits = colours[s];
+    return counted ? slotDegree_[s] == 1 : bits != 0 && (bits & (bits - 1)) == 0;
+  };
   // Per constraint: -2 if lone (or moving nothing), else -1, then its root slot, then its
   // group.
   // The constraints that are not lone, listed once: the passes below walk only them (in a
@@ -226,9 +234,6 @@ void WorldState::prepareBounceGroups() {
   grouped_.clear();
   for (std::size_t i = 0; i < constraintBodies_.size(); ++i) {
     const ConstraintBodies& cb = constraintBodies_[i];
-    auto single = [&](std::int32_t slot) {
-      return slot < 0 || slotDegree_[static_cast<std::size_t>(slot)] == 1;
-    };
     const bool moves = movingA(cb) >= 0 || movingB(cb) >= 0;
     const bool lone = cb.pointCount == 1 && single(movingA(cb)) && single(movingB(cb));
     constraintGroup_[i] = moves && !lone ? -1 : -2;
@@ -351,12 +356,13 @@ void WorldState::prepareBodies(float dt) {
   checkFreeMotion_ = !fields_.empty() || anyBeyond(baseAccel_, def_.quarantineSpeed / dt);
 }
 
-// The awake bodies' velocities into solver bodies (v and w; the rest as it is).
-void WorldState::loadVelocities(std::vector<SolverBody>& to) const {
-  for (std::size_t s = 0; s < static_cast<std::size_t>(awakeCount_); ++s) {
-    to[s].v = {v_[3 * s], v_[3 * s + 1]};
-    to[s].w = v_[3 * s + 2];
-  }
+// The first `slots` bodies' velocities as the contact solver's rows (ContactSolver::warmStart):
+// three floats a body, then the null body's zeros and one float of padding.
+void WorldState::velocityRows(std::span<const float> v, std::size_t slots,
+                              std::vector<float>& rows) {
+  rows.resize(3 * slots + 4);
+  std::copy_n(v.begin(), 3 * slots, rows.begin());
+  std::fill_n(rows.begin() + static_cast<std::ptrdiff_t>(3 * slots), 4, 0.0f);
 }
 
 // Free motion by the world's integrator (forces evaluated at its stages), then damping
@@ -368,13 +374,11 @@ void WorldState::integrateFreeMotion(int substep, float h) {
   const std::span<float> v(v_.data(), 3 * slots);
   // Restitution reverses the approach speed at the impact, read from the velocity the
   // integrator moves the bodies with over the substep: semi-implicit Euler moves them with the
-  // velocity after the substep's forces (taken in warmStart()), explicit Euler with the one
-  // before; Verlet and RK4 with one between the two, of which the one before is the lower bound
-  // (the one after bounced a ball dropped from 10 m to 10.035 m at restitution 1).
-  if (!bouncy_.empty() && def_.integrator != Integrator::semiImplicitEuler) {
-    freeMotion_.assign(slots + 1, SolverBody{});
-    loadVelocities(freeMotion_);
-  }
+  // velocity after the substep's forces (the free velocities below), explicit Euler with the
+  // one before; Verlet and RK4 with one between the two, of which the one before is the lower
+  // bound (the one after bounced a ball dropped from 10 m to 10.035 m at restitution 1).
+  if (!bouncy_.empty() && def_.integrator != Integrator::semiImplicitEuler)
+    velocityRows(v_, slots, approachV_);
   auto accel = [this](std::span<const double> qs, std::span<const float> vs, double ts,
                       std::span<float> a) { accelerations(qs, vs, ts, a); };
   integrate<float, double>(def_.integrator, q, v, t, h, accel, scratch_);
@@ -390,7 +394,19 @@ void WorldState::integrateFreeMotion(int substep, float h) {
     if (b.angularDamping > 0.0f) v_[3 * s + 2] *= 1.0f / (1.0f + h * b.angularDamping);
   }
   if (checkFreeMotion_) quarantineUnusable(QuarantineCause::motion, true);
-  freeV_.assign(v.begin(), v.end());
+  // The free velocities, kept for the position update (and with semi-implicit Euler the
+  // approach restitution reads, laid out as velocityRows does), and the solver's bodies'
+  // velocities, in one pass.
+  freeV_.resize(3 * slots + 4);
+  for (std::size_t s = 0; s < slots; ++s) {
+    const float vx = v_[3 * s], vy = v_[3 * s + 1], w = v_[3 * s + 2];
+    freeV_[3 * s] = vx;
+    freeV_[3 * s + 1] = vy;
+    freeV_[3 * s + 2] = w;
+    solverBodies_[s].v = {vx, vy};
+    solverBodies_[s].w = w;
+  }
+  std::fill_n(freeV_.begin() + static_cast<std::ptrdiff_t>(3 * slots), 4, 0.0f);
 }
 
 // A body whose velocity is not finite or beyond WorldDef::quarantineSpeed (its position then
@@ -431,15 +447,14 @@ void WorldState::requestQuarantine(std::int32_t body, QuarantineCause cause) {
   quarantine_.push_back({body, cause, start});
 }
 
-// The carried impulses applied to the free velocities; restitution's approach speeds are read
-// before any warm start (see ContactSolver::warmStart).
+// The carried impulses applied to the free velocities (in the solver's bodies since the free
+// motion); restitution's approach speeds are read before any warm start (see
+// ContactSolver::warmStart).
 void WorldState::warmStart() {
-  const bool bouncy = !bouncy_.empty();
-  loadVelocities(solverBodies_);
-  if (bouncy && def_.integrator == Integrator::semiImplicitEuler)
-    freeMotion_.assign(solverBodies_.begin(), solverBodies_.end());
-  contactSolver_.warmStart(solverBodies_, bouncy ? std::span<const SolverBody>{freeMotion_}
-                                                 : std::span<const SolverBody>{});
+  std::span<const float> approach;
+  if (!bouncy_.empty())
+    approach = def_.integrator == Integrator::semiImplicitEuler ? freeV_ : approachV_;
+  contactSolver_.warmStart(solverBodies_, approach);
 }
 
 // Positions: the free motion plus what the contacts changed in the velocity (read from the
@@ -500,37 +515,124 @@ void WorldState::storeImpulses() {
 // take back, and through a row of touching bodies passes on before it can.
 void WorldState::applyRestitution() {
   if (bouncy_.empty()) return;
+  const float threshold = def_.restitutionThreshold;
+  // The constraints that may bounce (a point the solver pushed, approaching fast enough), in
+  // order; the others are left alone below, so only these are read whole. None: nothing
+  // changes, and the energy bound has nothing to limit.
+  bouncing_.clear();
   for (std::size_t j = 0; j < bouncy_.size(); ++j) {
-    ContactConstraint& cc = bouncy_[j];
-    for (int k = 0; k < cc.pointCount; ++k)
-      cc.points[k] = contactSolver_.point(static_cast<std::size_t>(bouncyIndex_[j]), k);
+    const auto i = static_cast<std::size_t>(bouncyIndex_[j]);
+    for (int k = 0; k < bouncy_[j].pointCount; ++k) {
+      const SolvedPoint p = contactSolver_.solved(i, k);
+      if (p.maxNormalImpulse != 0.0f && p.relativeVelocity <= -threshold) {
+        bouncing_.push_back(static_cast<std::int32_t>(j));
+        break;
+      }
+    }
   }
+  if (bouncing_.empty()) return;
   beforeBounce_.resize(3 * tracked_.size());
   for (std::size_t i = 0; i < tracked_.size(); ++i)
     std::copy_n(&v_[3 * static_cast<std::size_t>(tracked_[i].slot)], 3, &beforeBounce_[3 * i]);
-  const float threshold = def_.restitutionThreshold;
-  forEachBouncy([&](ContactConstraint& cc, Vec2& vA, float& wA, Vec2& vB, float& wB) {
-    if (cc.restitution == 0.0f) return;
-    const Vec2 n = cc.normal;
+  for (const std::int32_t j : bouncing_) {
+    ContactConstraint& cc = bouncy_[static_cast<std::size_t>(j)];
+    for (int k = 0; k < cc.pointCount; ++k)
+      cc.points[k] = contactSolver_.point(
+          static_cast<std::size_t>(bouncyIndex_[static_cast<std::size_t>(j)]), k);
+    // Which points bounce: those that were approaching fast enough and that the solver pushed,
+    // and that were not already overlapping past the slop when the step began (an impact, not
+    // an overlap the push-out is resolving: a circle born inside two overlapping static boxes,
+    // bounced off both faces at once, would double its speed every few steps). The other
+    // pushed point of a manifold holds: the bounce may push it too, so that it does not
+    // approach, but never takes back what the solver gave it.
+    Bounce roles[2] = {Bounce::none, Bounce::none};
+    bool any = false;
     for (int k = 0; k < cc.pointCount; ++k) {
+      const ConstraintPoint& p = cc.points[k];
+      if (p.maxNormalImpulse == 0.0f) continue;
+      const bool bounces = p.relativeVelocity <= -threshold && p.baseSeparation >= -kLinearSlop;
+      roles[k] = bounces ? Bounce::bounces : Bounce::holds;
+      any = any || bounces;
+    }
+    if (!any) continue;
+    Vec2 vA{}, vB{};
+    float wA = 0.0f, wB = 0.0f;
+    const std::size_t iA = 3 * static_cast<std::size_t>(std::max(cc.slotA, 0));
+    const std::size_t iB = 3 * static_cast<std::size_t>(std::max(cc.slotB, 0));
+    if (cc.slotA >= 0) vA = {v_[iA], v_[iA + 1]}, wA = v_[iA + 2];
+    if (cc.slotB >= 0) vB = {v_[iB], v_[iB + 1]}, wB = v_[iB + 2];
+    const bool together = cc.pointCount == 2 && roles[0] != Bounce::none &&
+                          roles[1] != Bounce::none && bounceTogether(cc, roles, vA, wA, vB, wB);
+    for (int k = 0; k < cc.pointCount && !together; ++k) {
+      if (roles[k] != Bounce::bounces) continue;
       ConstraintPoint& p = cc.points[k];
-      // Only points that were approaching fast enough and that the solver pushed, and that
-      // were not already overlapping past the slop when the step began: an impact, not an
-      // overlap the push-out is resolving (a circle born inside two overlapping static boxes,
-      // bounced off both faces at once, would double its speed every few steps).
-      if (p.relativeVelocity > -threshold || p.maxNormalImpulse == 0.0f) continue;
-      if (p.baseSeparation < -kLinearSlop) continue;
-      const float vn = dot(vB - vA, n) + wB * p.rnB - wA * p.rnA;
+      const float vn = dot(vB - vA, cc.normal) + wB * p.rnB - wA * p.rnA;
       const float impulse = -p.normalMass * (vn + cc.restitution * p.relativeVelocity);
       const float total = std::max(p.normalImpulse + impulse, 0.0f);
       const float applied = total - p.normalImpulse;
       p.normalImpulse = total;
-      p.maxNormalImpulse = std::max(p.maxNormalImpulse, applied);
-      const Vec2 P = applied * n;
-      applyImpulse(cc, p, P, vA, wA, vB, wB);
+      applyImpulse(cc, p, applied * cc.normal, vA, wA, vB, wB);
     }
-  });
+    if (cc.slotA >= 0) v_[iA] = vA.x, v_[iA + 1] = vA.y, v_[iA + 2] = wA;
+    if (cc.slotB >= 0) v_[iB] = vB.x, v_[iB + 1] = vB.y, v_[iB + 2] = wB;
+  }
   limitBounceEnergy();
+}
+
+// Both points of a manifold at once: one after the other, the first point's bounce turns the
+// body and the second is left less to do (a unit box meeting a wall flat at 6 m/s, e = 0.5,
+// came back at 2.64 m/s spinning at 0.72 rad/s, not at 3 m/s without turning). Each bouncing
+// point aims at e times its approach, each holding point at not approaching; as a linear
+// complementarity problem in the two impulses' totals x (a bouncing point's at least 0, a
+// holding point's at least what the solver gave it, lo): the normal velocities after,
+// vn + K (x - x0), are at least their targets, and a point whose impulse is above its bound is
+// at its target. K is the pair's 2x2 effective mass matrix (symmetric, positive definite where
+// it is well conditioned), so exactly one of four cases holds (both points pushing, either
+// alone, neither), and they are tried in turn, as Box2D's block solver does for the normal
+// constraint. False where K is ill conditioned (the points nearly on top of each other): the
+// caller then bounces them one after the other.
+bool WorldState::bounceTogether(ContactConstraint& cc, const Bounce (&roles)[2], Vec2& vA,
+                                float& wA, Vec2& vB, float& wB) {
+  ConstraintPoint &p0 = cc.points[0], &p1 = cc.points[1];
+  const float m = cc.invMassA + cc.invMassB;
+  const float k11 = m + cc.invIA * p0.rnA * p0.rnA + cc.invIB * p0.rnB * p0.rnB;
+  const float k22 = m + cc.invIA * p1.rnA * p1.rnA + cc.invIB * p1.rnB * p1.rnB;
+  const float k12 = m + cc.invIA * p0.rnA * p1.rnA + cc.invIB * p0.rnB * p1.rnB;
+  const float det = k11 * k22 - k12 * k12;
+  // The solver's own test of the block (massesBatch): conditioned to within 1000.
+  if (!(k11 * k11 < 1000.0f * det)) return false;
+  auto target = [&](const ConstraintPoint& p, Bounce role) {
+    return role == Bounce::bounces ? -cc.restitution * p.relativeVelocity : 0.0f;
+  };
+  auto lower = [](const ConstraintPoint& p, Bounce role) {
+    return role == Bounce::bounces ? 0.0f : p.normalImpulse;
+  };
+  const Vec2 dv = vB - vA;
+  const float lo0 = lower(p0, roles[0]), lo1 = lower(p1, roles[1]);
+  // In y = x - lo >= 0: the velocities after, less the targets, are w = K y + b >= 0.
+  const float d0 = lo0 - p0.normalImpulse, d1 = lo1 - p1.normalImpulse;
+  const float b0 =
+      dot(dv, cc.normal) + wB * p0.rnB - wA * p0.rnA - target(p0, roles[0]) + k11 * d0 + k12 * d1;
+  const float b1 =
+      dot(dv, cc.normal) + wB * p1.rnB - wA * p1.rnA - target(p1, roles[1]) + k12 * d0 + k22 * d1;
+  float y0 = 0.0f, y1 = 0.0f;
+  // Both pushing (w = 0), the first alone (y1 = 0, w0 = 0), the second alone, neither (y = 0).
+  if (const float s0 = (k12 * b1 - k22 * b0) / det, s1 = (k12 * b0 - k11 * b1) / det;
+      s0 >= 0.0f && s1 >= 0.0f) {
+    y0 = s0, y1 = s1;
+  } else if (const float a0 = -b0 / k11; a0 >= 0.0f && k12 * a0 + b1 >= 0.0f) {
+    y0 = a0;
+  } else if (const float a1 = -b1 / k22; a1 >= 0.0f && k12 * a1 + b0 >= 0.0f) {
+    y1 = a1;
+  } else if (!(b0 >= 0.0f && b1 >= 0.0f)) {
+    return false;  // rounding left no case standing: one after the other
+  }
+  const float applied0 = lo0 + y0 - p0.normalImpulse, applied1 = lo1 + y1 - p1.normalImpulse;
+  p0.normalImpulse += applied0;
+  p1.normalImpulse += applied1;
+  applyImpulse(cc, p0, applied0 * cc.normal, vA, wA, vB, wB);
+  applyImpulse(cc, p1, applied1 * cc.normal, vA, wA, vB, wB);
+  return true;
 }
 
 // Newton's law (each point's normal velocity reversed, times the restitution) keeps a lone

@@ -212,11 +212,14 @@ class WorldState {
   void storeVelocities();
   void quarantineUnusable(QuarantineCause cause, bool inStep);
   void requestQuarantine(std::int32_t body, QuarantineCause cause);
-  void loadVelocities(std::vector<SolverBody>& to) const;
+  static void velocityRows(std::span<const float> v, std::size_t slots, std::vector<float>& rows);
   void storeImpulses();
   void applyRestitution();
-  template <class Solve>
-  void forEachBouncy(Solve&& solve);
+  // A manifold point's part in restitution: not pushed (left alone), bouncing, or holding (see
+  // applyRestitution).
+  enum class Bounce : std::uint8_t { none, bounces, holds };
+  bool bounceTogether(ContactConstraint& cc, const Bounce (&roles)[2], Vec2& vA, float& wA,
+                      Vec2& vB, float& wB);
   void prepareBounceGroups();
   void measureContactWork();
   void limitBounceEnergy();
@@ -307,10 +310,13 @@ class WorldState {
   std::vector<ConstraintSource> constraintSources_;
   std::vector<ConstraintBodies> constraintBodies_;
   // Per awake slot: how many constraints overlapping past the slop when the step began move it
-  // (see prepareContacts: each pushes it out at its share of the push-out speed).
+  // (see prepareContacts: each pushes it out at its share of the push-out speed), and the slots
+  // counted, zeroed again at the next prepareContacts.
   std::vector<std::int32_t> slotOverlaps_;
+  std::vector<std::int32_t> overlapping_;
   std::vector<ContactConstraint> bouncy_;
   std::vector<std::int32_t> bouncyIndex_;
+  std::vector<std::int32_t> bouncing_;  // bouncy_ that may bounce this step (applyRestitution)
   // Restitution's energy budget (limitBounceEnergy): the bodies joined to a bouncy constraint
   // by touching contacts, in groups; per group what the contacts did to its kinetic energy
   // over the substeps (J), the terms of its energy as a function of how much of the bounce is
@@ -334,13 +340,15 @@ class WorldState {
   std::vector<std::int32_t> slotParent_, rootGroup_;  // per awake slot, while grouping
   std::vector<std::uint8_t> slotDegree_;
   ContactSolver contactSolver_;
-  // Per slot during the solve: the free-motion velocities of the substep, and the solver's
-  // bodies (velocity, and how far each has moved and turned since the constraints were
-  // prepared), plus the null body at the end.
+  // Per slot during the solve: the free-motion velocities of the substep (as velocityRows lays
+  // them out), and the solver's bodies (velocity, and how far each has moved and turned since
+  // the constraints were prepared), plus the null body at the end; with an integrator other
+  // than semi-implicit Euler, the velocities before the free motion, which restitution reads
+  // its approach from (semi-implicit Euler's is freeV_).
   std::vector<float> freeV_;
   std::vector<SolverBody> solverBodies_;
-  std::vector<SolverBody> freeMotion_;  // solverBodies_ before the warm start (restitution's)
-  std::vector<double> startCenter_;     // x and y per slot
+  std::vector<float> approachV_;
+  std::vector<double> startCenter_;  // x and y per slot
   std::vector<double> startAngle_;
   // Body::round per slot, read each substep (a byte each, where the bodies are a cache miss).
   std::vector<std::uint8_t> slotRound_;

@@ -13,6 +13,7 @@
 
 #include "game/cli.h"
 #include "game/commands/command_line.h"
+#include "game/commands/progress.h"
 #include "game/session/batch.h"
 #include "game/session/recording.h"
 #include "game/session/replay.h"
@@ -126,10 +127,10 @@ int runReplay(std::span<const std::string_view> args) {
         frames->update(m.state());
       };
     }
-    options.onProgress = [&](std::int64_t tick, std::int64_t last) {
-      if (last >= 60000)
-        std::fprintf(stderr, "ricochet replay: tick %lld of %lld\n", static_cast<long long>(tick),
-                     static_cast<long long>(last));
+    const std::int64_t last = std::min(options.to.value_or(recording.ticks), recording.ticks);
+    Progress progress("ricochet replay", "tick", last);
+    options.onProgress = [&](std::int64_t tick, std::int64_t) {
+      progress.update(tick, frames ? frames->framesAdded() : -1);
     };
     const auto start = std::chrono::steady_clock::now();
     const ReplayReport report = replayRecording(recording, options);

@@ -76,8 +76,8 @@ ReplaySetup::ReplaySetup(const Recording& recording, const std::string& levelOve
   config_.bots = h.bots;
   config_.seed = h.seed;
   config_.testHook = std::move(testHook);
-  const std::unique_ptr<Match> match = makeMatch();
-  const MatchState& s = match->state();
+  first_ = makeMatch();
+  const MatchState& s = first_->state();
   if (s.levelHash != h.levelHash)
     throw RecordingError(recording.path + ": the level at " + levelPath_ +
                          " is not the one recorded (content hash " + hex(s.levelHash) +
@@ -88,7 +88,10 @@ ReplaySetup::ReplaySetup(const Recording& recording, const std::string& levelOve
                          std::to_string(h.actors));
 }
 
-std::unique_ptr<Match> ReplaySetup::makeMatch() const {
+std::unique_ptr<Match> ReplaySetup::makeMatch() {
+  // The match the constructor made to check the level, handed out once: a replay makes one match
+  // and needs it at once, and a match takes a few milliseconds to build.
+  if (first_) return std::move(first_);
   try {
     return std::make_unique<Match>(level_, config_);
   } catch (const std::exception& e) {
@@ -97,7 +100,7 @@ std::unique_ptr<Match> ReplaySetup::makeMatch() const {
 }
 
 ReplayReport replayRecording(const Recording& rec, const ReplayOptions& options) {
-  const ReplaySetup setup(rec, options.level, options.testHook);
+  ReplaySetup setup(rec, options.level, options.testHook);
   std::unique_ptr<Match> match = setup.makeMatch();
   ReplayReport report;
   const std::int64_t last = std::clamp<std::int64_t>(options.to.value_or(rec.ticks), 0, rec.ticks);
@@ -198,7 +201,7 @@ ReplayReport replayRecording(const Recording& rec, const ReplayOptions& options)
       }
     }
     if (now >= from && options.onTick) options.onTick(*match);
-    if (options.onProgress && now % 6000 == 0) options.onProgress(now, last);
+    if (options.onProgress && now % 600 == 0) options.onProgress(now, last);
   }
   report.end = match->state().tick;
   report.finalHash = match->hash();

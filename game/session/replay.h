@@ -24,13 +24,14 @@ class ReplaySetup {
   // `testHook`: MatchConfig::testHook of the matches it makes (tests of the synctest only).
   ReplaySetup(const Recording& recording, const std::string& levelOverride = "",
               std::function<void(MatchState&)> testHook = {});
-  std::unique_ptr<Match> makeMatch() const;
+  std::unique_ptr<Match> makeMatch();
   const std::string& levelPath() const { return levelPath_; }
 
  private:
   std::string levelPath_;
   Level level_;
   MatchConfig config_;
+  std::unique_ptr<Match> first_;
 };
 
 enum class Verdict : std::uint8_t {

@@ -6,31 +6,11 @@
 
 #include "game/cli.h"
 #include "game/commands/command_line.h"
+#include "game/session/batch.h"
 #include "game/session/recording.h"
 #include "game/weapons/weapon_table.h"
 
 namespace game {
-namespace {
-
-// A string as a JSON string literal (control characters escaped).
-std::string jsonText(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char esc[8];
-      std::snprintf(esc, sizeof esc, "\\u%04x", static_cast<unsigned char>(c));
-      out += esc;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
-
-}  // namespace
 
 int runInfo(std::span<const std::string_view> args) {
   CLI::App app{
@@ -70,13 +50,13 @@ int runInfo(std::span<const std::string_view> args) {
                 ", \"players\": %d, \"bots\": %d, "
                 "\"ticks\": %lld, \"seconds\": %.3f, \"hashes\": %zu, \"keyframes\": %zu, "
                 "\"finished\": %s, \"final_hash\": %s, \"whole\": %s, \"integrity\": %s}\n",
-                jsonText(path).c_str(), r.bytes, r.chunks, jsonText(h.program).c_str(),
-                h.simulation, jsonText(h.level).c_str(), h.levelHash,
-                jsonText(h.weaponsSource).c_str(), h.seed, h.players, h.bots,
+                jsonString(path).c_str(), r.bytes, r.chunks, jsonString(h.program).c_str(),
+                h.simulation, jsonString(h.level).c_str(), h.levelHash,
+                jsonString(h.weaponsSource).c_str(), h.seed, h.players, h.bots,
                 static_cast<long long>(r.ticks), seconds, r.hashes.size(), r.keyframes.size(),
                 r.finished ? "true" : "false",
                 r.finalHash ? ("\"" + std::string(finalHash) + "\"").c_str() : "null",
-                whole ? "true" : "false", jsonText(integrity).c_str());
+                whole ? "true" : "false", jsonString(integrity).c_str());
   } else {
     std::printf("recording %s: %" PRIu64 " bytes, %zu chunks\n", path.c_str(), r.bytes, r.chunks);
     std::printf("recorded by %s (simulation %u)\n", h.program.c_str(), h.simulation);

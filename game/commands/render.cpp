@@ -8,6 +8,7 @@
 
 #include "game/cli.h"
 #include "game/commands/command_line.h"
+#include "game/session/batch.h"
 #include "game/session/recording.h"
 #include "game/session/replay.h"
 #include "game/view/frame_output.h"
@@ -27,13 +28,14 @@ int runRender(std::span<const std::string_view> args) {
       "be written, 2 bad command line.",
       "ricochet render"};
   std::string path, tickText, out, sizeText = "640x360", levelPath;
-  bool overlay = false;
+  bool overlay = false, json = false;
   app.add_option("recording", path, "the recording (.rec)")->required();
   app.add_option("--tick", tickText, "the tick to draw: T ticks (or Ts seconds) in")->required();
   app.add_option("-o,--out", out, "the PNG to write")->required();
   app.add_option("--size", sizeText, "the picture's size in pixels (default 640x360)");
   app.add_flag("--overlay", overlay, "with what the bots perceive");
   app.add_option("--level", levelPath, "the level's file, if not where the recording says");
+  app.add_flag("--json", json, "a JSON summary on stdout (the tick, its hash, the file written)");
   if (const std::optional<int> exit = parseCommandLine(app, "ricochet render", args)) return *exit;
   auto usage = [](const std::string& what) {
     std::fprintf(stderr, "ricochet render: %s (try ricochet render --help)\n", what.c_str());
@@ -82,6 +84,10 @@ int runRender(std::span<const std::string_view> args) {
     }
     std::fprintf(stderr, "ricochet render: tick %lld of %s in %s\n", static_cast<long long>(*tick),
                  path.c_str(), out.c_str());
+    if (json)
+      std::printf("{\"file\": %s, \"tick\": %lld, \"hash\": \"%016llx\", \"out\": %s}\n",
+                  jsonString(path).c_str(), static_cast<long long>(*tick),
+                  static_cast<unsigned long long>(report.finalHash), jsonString(out).c_str());
     return kExitOk;
   } catch (const RecordingError& e) {
     std::fprintf(stderr, "ricochet render: %s\n", e.what());

@@ -11,9 +11,7 @@
 #include <thread>
 
 namespace game {
-namespace {
-
-std::string jsonText(const std::string& s) {
+std::string jsonString(const std::string& s) {
   std::string out = "\"";
   for (const char c : s) {
     if (c == '"' || c == '\\') {
@@ -29,8 +27,6 @@ std::string jsonText(const std::string& s) {
   }
   return out + "\"";
 }
-
-}  // namespace
 
 std::optional<Shard> parseShard(std::string_view text) {
   const std::size_t slash = text.find('/');
@@ -92,7 +88,8 @@ std::string replayJson(const std::string& file, const ReplayReport& report, doub
                 "\", \"verdict\": \"%s\", \"hashes_checked\": %d, \"seconds\": %.3f",
                 static_cast<long long>(report.start), static_cast<long long>(report.end),
                 report.finalHash, verdictName(report.verdict), report.hashesChecked, seconds);
-  return "{\"file\": " + jsonText(file) + text + ", \"message\": " + jsonText(report.message) + "}";
+  return "{\"file\": " + jsonString(file) + text + ", \"message\": " + jsonString(report.message) +
+         "}";
 }
 
 int runBatch(const std::string& folderOrList, const BatchOptions& options, std::FILE* out) {
@@ -125,8 +122,8 @@ int runBatch(const std::string& folderOrList, const BatchOptions& options, std::
         // A recording that cannot be replayed at all is one line too; the batch goes on.
         char text[64];
         std::snprintf(text, sizeof text, ", \"verdict\": \"error\", \"seconds\": %.3f", seconds());
-        r.line = "{\"file\": " + jsonText(files[k]) + text +
-                 ", \"message\": " + jsonText(e.what()) + "}";
+        r.line = "{\"file\": " + jsonString(files[k]) + text +
+                 ", \"message\": " + jsonString(e.what()) + "}";
         r.rank = 2;
       }
       const std::lock_guard lock(mutex);

@@ -35,6 +35,10 @@ struct BatchOptions {
   bool synctest = false;
 };
 
+// A string as a JSON string literal, quotes included, control characters escaped (what every
+// command's --json writes a file name or a message with).
+std::string jsonString(const std::string& s);
+
 // One recording's result as a JSON object on one line.
 std::string replayJson(const std::string& file, const ReplayReport& report, double seconds);
 

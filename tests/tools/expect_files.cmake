@@ -1,5 +1,5 @@
 # Runs a command that writes files and checks what it leaves: exit code 0, every file of FILES
-# present and not empty, none of ABSENT present. ARGS, FILES and ABSENT are lists separated by
+# present and not empty, none of ABSENT present, stderr matching MATCH and stdout STDOUT_MATCH. ARGS, FILES and ABSENT are lists separated by
 # '|' (a ';' would split the test's command line). Everything under CLEAN is removed first, so
 # that files from an earlier run prove nothing.
 string(REPLACE "|" ";" args "${ARGS}")
@@ -29,5 +29,8 @@ foreach(f IN LISTS absent)
 endforeach()
 if(MATCH AND NOT err MATCHES "${MATCH}")
   message(FATAL_ERROR "stderr does not match '${MATCH}': ${err}")
+endif()
+if(STDOUT_MATCH AND NOT out MATCHES "${STDOUT_MATCH}")
+  message(FATAL_ERROR "stdout does not match '${STDOUT_MATCH}': ${out}")
 endif()
 message(STATUS "ok: ${out}${err}")

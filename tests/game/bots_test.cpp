@@ -23,7 +23,8 @@
 #include "physics/random.h"
 #include "physics/trig.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace bots_test {
 
 using game::Behaviour;
 using game::Level;
@@ -764,4 +765,4 @@ TEST(Bots, MindsAndSoundsAreHashed) {
   EXPECT_TRUE(changes([&] { m.state().sounds.push_back({}); }));
 }
 
-}  // namespace
+}  // namespace bots_test

@@ -12,7 +12,8 @@
 #include "physics/shapes.h"
 #include "physics/trig.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace convex_decomposition_test {
 
 using Poly = std::vector<rc::Vec2>;
 
@@ -169,4 +170,4 @@ TEST(ConvexDecomposition, NonSimplePolygonsAreRefusedWithAReason) {
   EXPECT_EQ(reason({{0, 0}, {1, 0}, {std::nanf(""), 1}}), "has a vertex that is not finite");
 }
 
-}  // namespace
+}  // namespace convex_decomposition_test

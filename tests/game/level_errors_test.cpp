@@ -13,7 +13,8 @@
 #include "level_test_support.h"
 #include "physics/random.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace level_errors_test {
 
 using json = nlohmann::json;
 using level_test::levelErrorOf;
@@ -351,4 +352,4 @@ TEST(LevelFuzz, TruncatedAndCorruptedLevelsFailCleanly) {
   EXPECT_GT(loaded, 10);  // some edits land in names and leave a valid level
 }
 
-}  // namespace
+}  // namespace level_errors_test

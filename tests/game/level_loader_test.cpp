@@ -12,7 +12,8 @@
 #include "game/level/tiled_reader.h"
 #include "level_test_support.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace level_loader_test {
 
 using game::Level;
 using game::LevelObjectKind;
@@ -394,4 +395,4 @@ TEST(LevelLoader, RotatedObjectsTurnAboutTheirOrigin) {
   }
 }
 
-}  // namespace
+}  // namespace level_loader_test

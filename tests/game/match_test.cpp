@@ -17,7 +17,8 @@
 #include "physics/random.h"
 #include "physics/trig.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace match_test {
 
 using game::Level;
 using game::Match;
@@ -208,4 +209,4 @@ TEST(Match, SameSeedSameHashes) {
   EXPECT_NE(a.back(), c.back());
 }
 
-}  // namespace
+}  // namespace match_test

@@ -12,7 +12,8 @@
 #include "game/session/recording_file.h"
 #include "physics/random.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace recording_file_test {
 
 using game::RecordingContents;
 
@@ -135,4 +136,4 @@ TEST(RecordingFile, OtherFilesAreRefusedByName) {
             later.string() + ": recording format 9, this ricochet reads format 1");
 }
 
-}  // namespace
+}  // namespace recording_file_test

@@ -19,7 +19,8 @@
 #include "game/rules/pickups.h"
 #include "game/weapons/weapons.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace rules_test {
 
 using game::Level;
 using game::LevelMaterial;
@@ -577,4 +578,4 @@ TEST(Rules, StateEntersTheHash) {
   EXPECT_EQ(m.hash(), h);
 }
 
-}  // namespace
+}  // namespace rules_test

@@ -22,7 +22,8 @@
 #include "physics/bytes.h"
 #include "physics/random.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace session_test {
 
 using game::Recording;
 using game::ReplayOptions;
@@ -541,4 +542,4 @@ TEST(Session, BatchShardsAreDisjointAndThreadsChangeNothing) {
   EXPECT_NE(linesA[1].find("\"verdict\": \"ok\""), std::string::npos) << linesA[1];
 }
 
-}  // namespace
+}  // namespace session_test

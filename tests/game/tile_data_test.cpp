@@ -8,7 +8,8 @@
 #include "game/level/tiled_map.h"
 #include "level_test_support.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace tile_data_test {
 
 const game::ErrorContext kAt("data.tmj");
 
@@ -80,4 +81,4 @@ TEST(TileData, GidsAreLittleEndianWithTheirFlags) {
   EXPECT_EQ(gids[2] & ~game::kGidFlags, 0x0FFFFFFFu);
 }
 
-}  // namespace
+}  // namespace tile_data_test

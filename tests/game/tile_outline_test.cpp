@@ -12,7 +12,8 @@
 
 #include "physics/random.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace tile_outline_test {
 
 using game::GridCorner;
 
@@ -160,4 +161,4 @@ TEST(TileOutline, RandomGridsAgainstBruteForce) {
   }
 }
 
-}  // namespace
+}  // namespace tile_outline_test

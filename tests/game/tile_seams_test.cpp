@@ -13,7 +13,8 @@
 #include "game/level/tiled_reader.h"
 #include "level_test_support.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace tile_seams_test {
 
 constexpr int kTiles = 40;
 
@@ -192,4 +193,4 @@ TEST(TileSeams, RayAlongMergedFloorNeverStopsAtASeam) {
   EXPECT_EQ(offFace, 0);
 }
 
-}  // namespace
+}  // namespace tile_seams_test

@@ -12,7 +12,8 @@
 #include "game/level/level_loader.h"
 #include "level_test_support.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace tiled_roundtrip_test {
 
 std::string findOnPath(const std::string& program) {
   const char* path = std::getenv("PATH");
@@ -78,4 +79,4 @@ TEST(TiledRoundTrip, ExportedLevelsBuildTheSameWorld) {
   }
 }
 
-}  // namespace
+}  // namespace tiled_roundtrip_test

@@ -14,7 +14,8 @@
 #include "game/weapons/weapons.h"
 #include "physics/trig.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace weapons_test {
 
 using game::Level;
 using game::LevelMaterial;
@@ -639,4 +640,4 @@ TEST(WeaponTable, BundledAndBadFiles) {
   }
 }
 
-}  // namespace
+}  // namespace weapons_test

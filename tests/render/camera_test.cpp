@@ -5,7 +5,8 @@
 
 #include "render/camera.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace camera_test {
 
 using render::Camera;
 
@@ -65,4 +66,4 @@ TEST(Camera, FitRejectsBadInput) {
   EXPECT_THROW(Camera::fit({{0, 0}, {1, 1}}, 160, 90, 50.0f), std::invalid_argument);
 }
 
-}  // namespace
+}  // namespace camera_test

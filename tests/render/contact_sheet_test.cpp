@@ -7,7 +7,8 @@
 #include "render/contact_sheet.h"
 #include "render_support.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace contact_sheet_test {
 
 using render::Color;
 using render::Image;
@@ -58,4 +59,4 @@ TEST(ContactSheet, ShrinkingAveragesInsteadOfSkipping) {
   EXPECT_THROW(render::contactSheet(std::vector<Image>{}), std::invalid_argument);
 }
 
-}  // namespace
+}  // namespace contact_sheet_test

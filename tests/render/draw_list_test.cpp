@@ -8,7 +8,8 @@
 
 #include "render/draw_list.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace draw_list_test {
 
 using render::DrawList;
 using render::ShapeKind;
@@ -88,4 +89,4 @@ TEST(DrawList, BadInputGivesOneLineNamingTheValue) {
             "render: DrawList::segment: width must be finite and >= 0, got -2");
 }
 
-}  // namespace
+}  // namespace draw_list_test

@@ -14,7 +14,8 @@
 #include "render/png.h"
 #include "render_support.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace frame_output_test {
 
 namespace fs = std::filesystem;
 using game::FrameOptions;
@@ -131,4 +132,4 @@ TEST(FrameOutput, WritesStepZeroAndEveryKthStepAndTheSheet) {
   EXPECT_FALSE(output.due(12)) << "finished";
 }
 
-}  // namespace
+}  // namespace frame_output_test

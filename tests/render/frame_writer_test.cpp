@@ -9,7 +9,8 @@
 #include "render/frame_writer.h"
 #include "render_support.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace frame_writer_test {
 
 using render::FrameWriter;
 using render::FrameWriterOptions;
@@ -97,4 +98,4 @@ TEST(FrameWriter, FailedWriteSurfacesOnTheCallersThread) {
   EXPECT_EQ(writer.stats().framesWritten, 1);
 }
 
-}  // namespace
+}  // namespace frame_writer_test

@@ -20,7 +20,8 @@
 #include "render/renderer.h"
 #include "render_support.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace golden_test {
 
 using render::Color;
 using render::Frame;
@@ -272,4 +273,4 @@ TEST(Golden, MismatchWritesActualAndDiffImages) {
   EXPECT_EQ(diff.pixel(0, 0).r, diff.pixel(0, 0).b);
 }
 
-}  // namespace
+}  // namespace golden_test

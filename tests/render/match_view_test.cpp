@@ -14,7 +14,8 @@
 #include "game/view/palette.h"
 #include "render_support.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace match_view_test {
 
 using game::Level;
 using game::Match;
@@ -273,4 +274,4 @@ TEST(LevelView, FillLoopsCoversARingAndLeavesItsHole) {
   EXPECT_EQ(rects.size(), 4u);  // the band under the hole, two beside it, the band above
 }
 
-}  // namespace
+}  // namespace match_view_test

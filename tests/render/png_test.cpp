@@ -11,7 +11,8 @@
 #include "render/png.h"
 #include "render_support.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace png_test {
 
 using render::Image;
 
@@ -112,4 +113,4 @@ TEST(Png, EncodingRejectsAnInconsistentImage) {
   EXPECT_THROW(render::encodePng(testPattern(2, 2), {0}), std::invalid_argument);
 }
 
-}  // namespace
+}  // namespace png_test

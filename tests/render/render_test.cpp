@@ -10,7 +10,8 @@
 #include "render/renderer.h"
 #include "render_support.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace render_test {
 
 using render::Camera;
 using render::Color;
@@ -292,4 +293,4 @@ TEST(Renderer, MissingFontIsNamed) {
   }
 }
 
-}  // namespace
+}  // namespace render_test

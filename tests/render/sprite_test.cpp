@@ -13,7 +13,8 @@
 #include "render/renderer.h"
 #include "render_support.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace sprite_test {
 
 using render::Color;
 using render::Frame;
@@ -256,4 +257,4 @@ TEST(Font, EnvironmentAndOptionsOverrideTheDefault) {
   ::unsetenv("RICOCHET_FONT");
 }
 
-}  // namespace
+}  // namespace sprite_test

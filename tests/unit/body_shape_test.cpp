@@ -12,7 +12,8 @@
 #include "physics/world.h"
 #include "support/world_scenes.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace body_shape_test {
 
 using rc::BodyId;
 using rc::ShapeId;
@@ -507,4 +508,4 @@ TEST(BodyShape, EventFlagsSuppressOnlyWhatNeitherSideWants) {
   }
 }
 
-}  // namespace
+}  // namespace body_shape_test

@@ -17,7 +17,8 @@
 #include "physics/world.h"
 #include "support/world_scenes.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace body_test {
 
 using rc::BodyId;
 using rc::BodyType;
@@ -701,4 +702,4 @@ TEST(Body, DestroyingWhileIteratingTheEndEventsIsSafe) {
   }
 }
 
-}  // namespace
+}  // namespace body_test

@@ -15,7 +15,8 @@
 #include "physics/broadphase.h"
 #include "physics/random.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace broadphase_test {
 
 using rc::AABB;
 using rc::ProxyId;
@@ -467,4 +468,4 @@ TEST(Broadphase, BadInputRejected) {
   tree.validate();
 }
 
-}  // namespace
+}  // namespace broadphase_test

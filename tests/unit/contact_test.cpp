@@ -15,7 +15,8 @@
 #include "physics/world.h"
 #include "support/world_scenes.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace contact_test {
 
 using rc::BodyId;
 using rc::Vec2;
@@ -202,4 +203,4 @@ TEST(World, ContactEventsOfABounce) {
   EXPECT_LE(static_cast<int>(begins.size()) - ends, 1);
 }
 
-}  // namespace
+}  // namespace contact_test

@@ -16,7 +16,8 @@
 #include "physics/world.h"
 #include "support/world_scenes.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace continuous_test {
 
 using rc::BodyId;
 using rc::Vec2;
@@ -295,4 +296,4 @@ TEST(Continuous, OneSidedLinksLetOutWhatStartsBehindThem) {
   }
 }
 
-}  // namespace
+}  // namespace continuous_test

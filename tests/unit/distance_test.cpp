@@ -19,7 +19,8 @@
 #include "physics/shapes.h"
 #include "support/reference_geometry.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace distance_test {
 
 using rc::Vec2;
 using rc::testing::Core;
@@ -1197,4 +1198,4 @@ TEST(DistanceProperties, WarmStartMatchesColdStart) {
   }
 }
 
-}  // namespace
+}  // namespace distance_test

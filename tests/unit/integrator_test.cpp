@@ -13,7 +13,8 @@
 
 #include "physics/integrate.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace integrator_test {
 
 using rc::Integrator;
 
@@ -223,4 +224,4 @@ TEST(Integrator, NamesRoundTrip) {
   EXPECT_EQ(rc::evaluationsPerStep(Integrator::rk4), 4);
 }
 
-}  // namespace
+}  // namespace integrator_test

@@ -15,7 +15,8 @@
 #include "physics/world.h"
 #include "support/world_scenes.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace island_test {
 
 using rc::BodyId;
 using rc::Vec2;
@@ -88,4 +89,4 @@ TEST(World, ForcesAndAskingQueriesWakeSleepers) {
   EXPECT_TRUE(w.isAwake(row[3]));
 }
 
-}  // namespace
+}  // namespace island_test

@@ -12,7 +12,8 @@
 #include "support/random_shapes.h"
 #include "support/reference_geometry.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace manifold_test {
 
 using rc::Vec2;
 using rc::testing::Kind;
@@ -518,4 +519,4 @@ TEST(Overlap, AgreesWithDistanceForEveryPair) {
   }
 }
 
-}  // namespace
+}  // namespace manifold_test

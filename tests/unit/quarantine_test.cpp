@@ -11,13 +11,15 @@
 #include <vector>
 
 #include "physics/world.h"
+#include "support/world_scenes.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace quarantine_test {
 
 using rc::BodyId;
 using rc::Vec2;
 
-constexpr float kDt = 1.0f / 60.0f;
+using rc::testing::kStep;
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 // A 3-wide, 4-high stack of boxes on the ground, settled, with the body in the middle of the
@@ -40,7 +42,7 @@ struct Pile {
       }
     culprit = boxes[4];
     for (int k = 0; k < 30; ++k)
-      world.step(kDt);
+      world.step(kStep);
   }
   // Every other box: finite, and no faster than the push-out speed.
   void expectNeighboursCalm() const {
@@ -72,10 +74,10 @@ TEST(Quarantine, ForceFieldNaN) {
   const Vec2 before = pile.world.position(pile.culprit);
   const BodyId culprit = pile.culprit;
   pile.world.addForceField([culprit](rc::ForceStage& s) { s.addForce(culprit, {kNaN, 0}); });
-  pile.world.step(kDt);
+  pile.world.step(kStep);
   pile.expectQuarantined(rc::QuarantineCause::forceField, before);
   for (int k = 0; k < 60; ++k)
-    pile.world.step(kDt);
+    pile.world.step(kStep);
   pile.expectNeighboursCalm();
   EXPECT_TRUE(pile.world.quarantineEvents().empty());  // reported once
 }
@@ -85,7 +87,7 @@ TEST(Quarantine, FiniteForceThatOverflows) {
   Pile pile;
   const Vec2 before = pile.world.position(pile.culprit);
   pile.world.applyForceToCenter(pile.culprit, {0, 1e38f});
-  pile.world.step(kDt);
+  pile.world.step(kStep);
   pile.expectQuarantined(rc::QuarantineCause::motion, before);
   pile.expectNeighboursCalm();
 }
@@ -95,10 +97,10 @@ TEST(Quarantine, AbsurdSpeedMeetingOthers) {
   Pile pile;
   const Vec2 before = pile.world.position(pile.culprit);
   pile.world.applyLinearImpulse(pile.culprit, {1e30f, 0}, pile.world.worldCenter(pile.culprit));
-  pile.world.step(kDt);
+  pile.world.step(kStep);
   pile.expectQuarantined(rc::QuarantineCause::motion, before);
   for (int k = 0; k < 60; ++k)
-    pile.world.step(kDt);
+    pile.world.step(kStep);
   pile.expectNeighboursCalm();
 }
 
@@ -106,11 +108,11 @@ TEST(Quarantine, AbsurdSpeedMeetingOthers) {
 TEST(Quarantine, ReEnabledBodyRejoins) {
   Pile pile;
   pile.world.applyForceToCenter(pile.culprit, {0, 1e38f});
-  pile.world.step(kDt);
+  pile.world.step(kStep);
   ASSERT_FALSE(pile.world.isEnabled(pile.culprit));
   pile.world.setEnabled(pile.culprit, true);
   for (int k = 0; k < 60; ++k)
-    pile.world.step(kDt);
+    pile.world.step(kStep);
   EXPECT_TRUE(pile.world.quarantineEvents().empty());
   EXPECT_NEAR(pile.world.position(pile.culprit).y, 1.5f, 0.05f);
   pile.expectNeighboursCalm();
@@ -127,7 +129,7 @@ TEST(ForceField, WakesSleepingBodiesAfterTheStep) {
   const BodyId box = w.createBody(d);
   w.createShape(box, rc::makeBox(0.5f, 0.5f));
   for (int k = 0; k < 120 && w.isAwake(box); ++k)
-    w.step(kDt);
+    w.step(kStep);
   ASSERT_FALSE(w.isAwake(box));
   bool on = false;
   Vec2 seen{};
@@ -139,13 +141,13 @@ TEST(ForceField, WakesSleepingBodiesAfterTheStep) {
       EXPECT_EQ(s.velocity(box), Vec2{});  // asleep: at rest
     }
   });
-  w.step(kDt);
+  w.step(kStep);
   EXPECT_NEAR(seen.y, 0.5f, 0.01f);
   on = true;
-  w.step(kDt);
+  w.step(kStep);
   EXPECT_TRUE(w.isAwake(box));  // woken after the step it was pushed in
   const float y = w.position(box).y;
-  w.step(kDt);
+  w.step(kStep);
   EXPECT_GT(w.position(box).y, y);  // and lifted in the next
 }
 
@@ -166,18 +168,18 @@ TEST(ForceField, StaleIdThrowsAfterAWholeStep) {
   make(plain);
   const auto [gone, stays] = make(fielded);
   fielded.addForceField([gone = gone](rc::ForceStage& s) { s.addForce(gone, {1, 0}); });
-  plain.step(kDt);
+  plain.step(kStep);
   try {
-    fielded.step(kDt);
+    fielded.step(kStep);
     FAIL() << "no error for a stale id";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("body 0 (generation 1)"), std::string::npos) << e.what();
   }
   EXPECT_EQ(fielded.time(), plain.time());
   EXPECT_EQ(fielded.precisePosition(stays), plain.precisePosition(stays));
-  plain.step(kDt);
-  EXPECT_THROW(fielded.step(kDt), std::invalid_argument);  // every step, until the field is fixed
+  plain.step(kStep);
+  EXPECT_THROW(fielded.step(kStep), std::invalid_argument);  // every step, until the field is fixed
   EXPECT_EQ(fielded.precisePosition(stays), plain.precisePosition(stays));
 }
 
-}  // namespace
+}  // namespace quarantine_test

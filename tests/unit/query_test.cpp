@@ -24,7 +24,8 @@
 #include "support/random_shapes.h"
 #include "support/world_scenes.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace query_test {
 
 using rc::BodyId;
 using rc::BodyType;
@@ -607,4 +608,4 @@ TEST(World, QueriesFindWhatTheyShould) {
                rc::InvalidDefinition);
 }
 
-}  // namespace
+}  // namespace query_test

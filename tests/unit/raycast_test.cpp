@@ -22,7 +22,8 @@
 #include "physics/raycast.h"
 #include "support/random_shapes.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace raycast_test {
 
 using rc::CastOutput;
 using rc::RayCastInput;
@@ -1325,4 +1326,4 @@ TEST(RayCastPolygon, PolygonsFrom1mmTo100mAgreeWithTheExactCast) {
   RecordProperty("worst_normal_error_over_tolerance", buf);
 }
 
-}  // namespace
+}  // namespace raycast_test

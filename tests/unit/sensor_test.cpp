@@ -15,7 +15,8 @@
 #include "physics/world.h"
 #include "support/world_scenes.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace sensor_test {
 
 using rc::BodyId;
 using rc::Vec2;
@@ -80,4 +81,4 @@ TEST(World, SensorEvents) {
   EXPECT_GT(fast.position(bullet).x, 3.0f);
 }
 
-}  // namespace
+}  // namespace sensor_test

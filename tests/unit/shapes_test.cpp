@@ -14,7 +14,8 @@
 #include "support/random_shapes.h"
 #include "support/reference_geometry.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace shapes_test {
 
 using rc::Vec2;
 constexpr double kPi = 3.14159265358979323846;
@@ -507,4 +508,4 @@ TEST(PolygonShape, ManyPointsOnACircleAreRefusedWithTheHullsVertexCount) {
     EXPECT_EQ(square.vertices[k], corners[static_cast<size_t>(k)]);
 }
 
-}  // namespace
+}  // namespace shapes_test

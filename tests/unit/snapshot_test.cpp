@@ -11,21 +11,16 @@
 
 #include "physics/random.h"
 #include "physics/world.h"
+#include "support/world_scenes.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace snapshot_test {
 
 using rc::BodyId;
 using rc::Vec2;
 
-constexpr float kDt = 1.0f / 60.0f;
-
-rc::BodyDef dynamicAt(Vec2 p, float angle = 0.0f) {
-  rc::BodyDef d;
-  d.type = rc::BodyType::dynamicBody;
-  d.position = p;
-  d.angle = angle;
-  return d;
-}
+using rc::testing::dynamicAt;
+using rc::testing::kStep;
 
 // A world that has everything a snapshot must carry: a settling pile (contacts with warm
 // starts), bouncing balls, a sleeping pile far off, a kinematic mover, a sensor zone, a bullet,
@@ -102,7 +97,7 @@ struct RichScene {
   // Things a game does between steps, at chosen steps.
   void act(rc::World& w, int step) const {
     if (step % 50 == 25)
-      w.setTargetTransform(mover, {-20.0f + 0.1f * static_cast<float>(step), 1}, 0, kDt);
+      w.setTargetTransform(mover, {-20.0f + 0.1f * static_cast<float>(step), 1}, 0, kStep);
     if (step == 70) w.setEnabled(disabled, true);
   }
 };
@@ -111,7 +106,7 @@ std::vector<std::uint64_t> run(rc::World& w, const RichScene& scene, int from, i
   std::vector<std::uint64_t> hashes;
   for (int k = from; k < to; ++k) {
     scene.act(w, k);
-    w.step(kDt);
+    w.step(kStep);
     hashes.push_back(w.stateHash());
   }
   return hashes;
@@ -158,11 +153,11 @@ TEST(Snapshot, Synctest) {
   for (int k = 0; k < 150; ++k) {
     const rc::WorldSnapshot before = w.snapshot();
     scene.act(w, k);
-    w.step(kDt);
+    w.step(kStep);
     const std::uint64_t once = w.stateHash();
     w.restore(before);
     scene.act(w, k);
-    w.step(kDt);
+    w.step(kStep);
     ASSERT_EQ(w.stateHash(), once) << "step " << k + 1;
   }
 }
@@ -175,7 +170,7 @@ TEST(Snapshot, CarriesPublishedAndPendingEvents) {
   w.createShape(ground, rc::makeBox(5, 0.5f, {0, -0.5f}));
   const BodyId box = w.createBody(dynamicAt({0, 0.5f}));
   w.createShape(box, rc::makeBox(0.5f, 0.5f));
-  w.step(kDt);
+  w.step(kStep);
   ASSERT_EQ(w.contactEvents().begin.size(), 1u);
   const rc::WorldSnapshot touching = w.snapshot();
   w.destroyBody(box);
@@ -186,7 +181,7 @@ TEST(Snapshot, CarriesPublishedAndPendingEvents) {
   EXPECT_EQ(other.contactEvents().begin.size(), 1u);
   other.restore(pending);
   EXPECT_FALSE(other.isValid(box));
-  other.step(kDt);
+  other.step(kStep);
   ASSERT_EQ(other.contactEvents().end.size(), 1u);
   EXPECT_TRUE(other.contactEvents().end[0].destroyed);
 }
@@ -235,7 +230,7 @@ TEST(Snapshot, CorruptBytesAreRefusedOrHarmless) {
     ++taken;
     try {
       for (int k = 0; k < 5; ++k)
-        target.world.step(kDt);
+        target.world.step(kStep);
     } catch (const std::exception& e) {
       // A flipped generation can make the scene's force field name a body that is no more: a
       // clear error after a whole step (ForceField.StaleIdThrowsAfterAWholeStep). Anything else
@@ -284,4 +279,4 @@ TEST(Snapshot, OtherFormatsAndWorldsAreRefused) {
   EXPECT_NE(message(same, longer).find("bytes after the end"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace snapshot_test

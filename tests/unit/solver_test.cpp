@@ -15,7 +15,8 @@
 #include "physics/world.h"
 #include "support/world_scenes.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace solver_test {
 
 using rc::BodyId;
 using rc::Vec2;
@@ -844,8 +845,6 @@ TEST(World, HeavyBoxOnTwoLightBoxesHolds) {
   }
 }
 
-}  // namespace
-
 // ------------------------------------------------------------------ bodies born overlapping
 
 // A pile of `count` 1 m circles or boxes born at one point (or within `spread` of it), floating
@@ -967,3 +966,5 @@ TEST(OverlapRecovery, PilesOnTheGroundSpreadNoFasterThanThePushOutAndAFall) {
     }
   }
 }
+
+}  // namespace solver_test

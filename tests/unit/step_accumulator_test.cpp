@@ -15,7 +15,8 @@
 #include "physics/world.h"
 #include "support/world_scenes.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace step_accumulator_test {
 
 using rc::BodyId;
 using rc::Vec2;
@@ -95,4 +96,4 @@ TEST(StepAccumulator, RejectsBadInput) {
   EXPECT_EQ(acc.alpha(), 0.0);
 }
 
-}  // namespace
+}  // namespace step_accumulator_test

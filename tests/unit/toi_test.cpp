@@ -17,7 +17,8 @@
 #include "support/random_shapes.h"
 #include "support/sweeps.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace toi_test {
 
 using rc::Vec2;
 using rc::testing::Kind;
@@ -994,4 +995,4 @@ TEST(TimeOfImpact, SameAnswerFarFromOrigin) {
   EXPECT_LE(mismatched, 16 * 500 / 200);
 }
 
-}  // namespace
+}  // namespace toi_test

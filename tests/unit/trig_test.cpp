@@ -11,7 +11,8 @@
 #include "physics/random.h"
 #include "physics/trig.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace trig_test {
 
 TEST(Trig, SinCosAccuracyOverWideRange) {
   rc::Random rng(1);
@@ -229,4 +230,4 @@ TEST(Trig, RoundTripAngle) {
   }
 }
 
-}  // namespace
+}  // namespace trig_test

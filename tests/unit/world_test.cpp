@@ -16,7 +16,8 @@
 #include "physics/world.h"
 #include "support/world_scenes.h"
 
-namespace {
+// Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
+namespace world_test {
 
 using rc::BodyId;
 using rc::Vec2;
@@ -189,4 +190,4 @@ TEST(World, BadDefinitionsAreRejectedWithTheField) {
   EXPECT_THROW(w.step(0.0f), std::invalid_argument);
 }
 
-}  // namespace
+}  // namespace world_test

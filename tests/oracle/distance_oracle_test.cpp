@@ -45,6 +45,7 @@
 #include "support/box2d_adapter.h"
 #include "support/random_shapes.h"
 #include "support/reference_geometry.h"
+#include "support/sanitizers.h"
 
 namespace {
 
@@ -60,7 +61,7 @@ enum Kind { kCircle, kBox, kPolygon, kCapsule, kSegment, kChainLink, kKindCount 
 const char* const kKindNames[kKindCount] = {"circle",  "box",     "polygon",
                                             "capsule", "segment", "chain_link"};
 
-constexpr int kCasesPerPair = 100000;
+constexpr int kCasesPerPair = rc::testing::casesUnderSanitizers(100000);
 constexpr double kDistanceTolerance = 1e-4;
 constexpr double kPointTolerance = 1e-4;
 constexpr double kPointCompareAbove = 1e-3;

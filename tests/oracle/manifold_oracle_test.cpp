@@ -47,6 +47,7 @@
 #include "support/box2d_adapter.h"
 #include "support/random_shapes.h"
 #include "support/reference_geometry.h"
+#include "support/sanitizers.h"
 
 namespace {
 
@@ -168,7 +169,7 @@ TEST_P(ManifoldOracle, AgreesWithBox2D) {
   rc::Random rng(1000 + 10 * static_cast<int>(pc.a) + static_cast<int>(pc.b));
   int compared = 0, ties = 0, oracleMisses = 0, roundedCorners = 0, redrawn = 0;
   int handedOver = 0, falseCorners = 0, clamped = 0, linkMisses = 0, backFaces = 0;
-  constexpr int kCases = 100000;
+  constexpr int kCases = rc::testing::casesUnderSanitizers(100000);
   for (int i = 0; i < kCases; ++i) {
     rc::Shape a = rc::testing::randomShape(rng, pc.a), b = rc::testing::randomShape(rng, pc.b);
     rc::Transform xa = rc::testing::randomTransform(rng, {}, 0.6f, pc.a != Kind::box);

@@ -56,6 +56,7 @@
 #include "support/box2d_adapter.h"
 #include "support/random_shapes.h"
 #include "support/reference_geometry.h"
+#include "support/sanitizers.h"
 
 namespace {
 
@@ -66,7 +67,7 @@ using rc::testing::Kind;
 using rc::testing::P2;
 using rc::testing::signedDistance;
 
-constexpr int kCasesPerPair = 100000;
+constexpr int kCasesPerPair = rc::testing::casesUnderSanitizers(100000);
 // The band: decisions may differ only this close to touching.
 constexpr double kBand = 1e-4;
 constexpr Kind kKinds[] = {Kind::circle,      Kind::box,     Kind::polygon, Kind::roundedPolygon,

@@ -67,12 +67,13 @@
 #include "physics/raycast.h"
 #include "support/box2d_adapter.h"
 #include "support/random_shapes.h"
+#include "support/sanitizers.h"
 
 namespace {
 
 using rc::Vec2;
 
-constexpr int kCases = 100000;
+constexpr int kCases = rc::testing::casesUnderSanitizers(100000);
 constexpr float kGraze = 1e-4f;  // metres
 constexpr double kFractionTol = 1e-5;
 constexpr double kNormalTol = 1e-4;

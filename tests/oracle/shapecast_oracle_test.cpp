@@ -88,6 +88,7 @@
 #include "physics/toi.h"
 #include "support/box2d_adapter.h"
 #include "support/random_shapes.h"
+#include "support/sanitizers.h"
 #include "support/sweeps.h"
 
 namespace {
@@ -95,7 +96,7 @@ namespace {
 using rc::Vec2;
 using rc::testing::Kind;
 
-constexpr int kCasesPerPair = 100000;
+constexpr int kCasesPerPair = rc::testing::casesUnderSanitizers(100000);
 // Ours stops with the surfaces in [target, target + kTol) (toi.h).
 constexpr float kTol = 0.25f * b2_linearSlop;
 // Box2D's b2ShapeCast stops with the cores in [sigma, sigma + kBandB2] (measured, see above).

@@ -72,6 +72,7 @@
 #include "physics/toi.h"
 #include "support/box2d_adapter.h"
 #include "support/random_shapes.h"
+#include "support/sanitizers.h"
 #include "support/sweeps.h"
 
 namespace {
@@ -80,7 +81,7 @@ using rc::Vec2;
 using rc::testing::Kind;
 using rc::testing::SweepCase;
 
-constexpr int kCasesPerPair = 100000;
+constexpr int kCasesPerPair = rc::testing::casesUnderSanitizers(100000);
 constexpr float kTol = 0.25f * b2_linearSlop;
 // GJK distances in float at coordinates of a few metres are good to ~1e-5 m.
 constexpr float kSlack = 1e-4f;

@@ -12,9 +12,13 @@
 
 namespace render {
 
+// Whether libOSMesa is in the process yet: it is opened by the first GlContext, never at start.
+bool osMesaLoaded();
+
 class GlContext {
  public:
-  // Throws std::runtime_error with a one-line reason when no GL 4.5 core context can be made.
+  // Opens libOSMesa the first time. Throws std::runtime_error with a one-line reason when the
+  // library cannot be loaded or no GL 4.5 core context can be made.
   GlContext();
   ~GlContext();
   GlContext(const GlContext&) = delete;

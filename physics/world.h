@@ -108,7 +108,8 @@ struct WorldDef {
   // is quarantined (QuarantineEvent): far above any game's bullets, far below what float
   // arithmetic on the contacts of such a body can carry without overflowing.
   float quarantineSpeed = 1e6f;
-  // The region most bodies live in: the quadtree's world square. Bodies outside it still work.
+  // The region most bodies live in: the quadtree's world square. Bodies outside it still work,
+  // but every query scans them (a list, not the tree): fit this to the level.
   AABB bounds{{-512.0f, -512.0f}, {512.0f, 512.0f}};
 };
 

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <istream>
 #include <optional>
 #include <string>
 #include <system_error>
@@ -56,6 +57,26 @@ std::optional<std::string> readInputFile(const std::string& path, std::uintmax_t
   }
   if (in.bad()) return "cannot read the file";
   return std::nullopt;
+}
+
+// A line of a text read as a stream (an input script on a pipe, a list of recordings), at most
+// `limit` characters: std::getline would take a line of /dev/zero's without end before any check
+// of its length. Reads through the newline (dropped); false at the end of the stream. A longer
+// line sets `tooLong` and stops there.
+inline bool readBoundedLine(std::istream& in, std::string& line, std::size_t limit, bool& tooLong) {
+  line.clear();
+  tooLong = false;
+  bool any = false;
+  for (int c = in.get(); c != std::char_traits<char>::eof(); c = in.get()) {
+    any = true;
+    if (c == '\n') return true;
+    if (line.size() == limit) {
+      tooLong = true;
+      return true;
+    }
+    line += static_cast<char>(c);
+  }
+  return any;
 }
 
 }  // namespace game

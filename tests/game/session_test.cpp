@@ -20,6 +20,7 @@
 #include "game/match/match_snapshot.h"
 #include "game/quote.h"
 #include "game/session/batch.h"
+#include "game/session/input_script.h"
 #include "game/session/recording.h"
 #include "game/session/replay.h"
 #include "physics/bytes.h"
@@ -380,6 +381,26 @@ TEST(Session, HeaderTextsAreQuotedInEveryMessage) {
   expectShort(replay.err, 1);
   EXPECT_NE(replay.err.find("its level " + quoted + " is not where it says"), std::string::npos)
       << replay.err.substr(0, 400);
+}
+
+// What is read line by line (an input script, a list of recordings) may be a pipe or a device:
+// a line is bounded while it is read, not after. std::getline took /dev/zero's one endless line
+// until memory ran out.
+TEST(Session, EndlessLinesAreRefused) {
+  std::ifstream zero("/dev/zero", std::ios::binary);
+  game::InputScript script(zero, "/dev/zero", 1);
+  try {
+    script.inputsFor(0);
+    ADD_FAILURE() << "an endless line was accepted";
+  } catch (const game::InputScriptError& e) {
+    EXPECT_STREQ(e.what(), "/dev/zero:1: the line is over 4096 characters");
+  }
+  try {
+    game::batchFiles("/dev/zero");
+    ADD_FAILURE() << "an endless line was accepted";
+  } catch (const game::RecordingError& e) {
+    EXPECT_STREQ(e.what(), "/dev/zero: line 1 is over 4096 characters: not a list of recordings");
+  }
 }
 
 TEST(Session, LevelsThatAreMissingOrChangedAreRefused) {

@@ -1,16 +1,17 @@
 #include "game/scene.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
+#include <cstring>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
-#include <sstream>
-#include <system_error>
 #include <vector>
 
+#include "game/input_file.h"
+#include "game/json_guard.h"
+#include "game/quote.h"
 #include "physics/integrate.h"
 
 namespace game {
@@ -35,26 +36,11 @@ std::string describe(const json& j) {
   return s.size() > 40 ? s.substr(0, 37) + "..." : s;
 }
 
-// A name from the file as a message shows it: quoted, control characters (a newline, an ANSI
-// escape) written as \uXXXX so that a message stays one line and cannot drive the terminal,
-// and cut at 40 characters.
-std::string shownName(const std::string& name) {
-  std::string out = "\"";
-  for (const char c : name) {
-    if (out.size() > 41) {
-      out += "...";
-      break;
-    }
-    const auto u = static_cast<unsigned char>(c);
-    if (u < 0x20 || u == 0x7F || c == '"' || c == '\\') {
-      char code[8];
-      std::snprintf(code, sizeof code, "\\u%04x", static_cast<unsigned>(u));
-      out += code;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
+// An unknown key as a message shows it: as it is when quoting would only add the quotes (a
+// typo such as "radiuss"), else quoted, escaped and cut (game/quote.h): a key of a megabyte
+// or with a newline in it must not make the line.
+std::string fieldName(const std::string& key) {
+  return isPlainText(key, '"') ? key : quoteName(key, '"');
 }
 
 void onlyKnown(const json& obj, std::initializer_list<const char*> keys, const Where& at,
@@ -63,7 +49,7 @@ void onlyKnown(const json& obj, std::initializer_list<const char*> keys, const W
     bool known = false;
     for (const char* k : keys)
       known = known || it.key() == k;
-    if (!known) at.fail(prefix + it.key(), "unknown field");
+    if (!known) at.fail(prefix + fieldName(it.key()), "unknown field");
   }
 }
 
@@ -154,7 +140,7 @@ void parseShape(const json& j, BodyDesc& body, const Where& at, const std::strin
       bool ok = false;
       for (const char* k : all)
         ok = ok || it.key() == k;
-      if (!ok) at.fail(prefix + it.key(), "unknown field for a " + type);
+      if (!ok) at.fail(prefix + fieldName(it.key()), "unknown field for a " + type);
     }
   };
   try {
@@ -195,7 +181,8 @@ void parseShape(const json& j, BodyDesc& body, const Where& at, const std::strin
         body.shapes.push_back({link, def});
     } else {
       at.fail(prefix + "type",
-              "must be one of circle, box, polygon, capsule, segment, chain; got \"" + type + "\"");
+              "must be one of circle, box, polygon, capsule, segment, chain; got " +
+                  quoteName(type, '"'));
     }
   } catch (const rc::InvalidShape& e) {
     at.fail(prefix.substr(0, prefix.size() - 1), e.what());
@@ -259,8 +246,8 @@ BodyDesc parseBody(const json& j, std::size_t index, const std::string& file) {
   if (j.is_object())
     if (const json* n = find(j, "name"); n != nullptr && n->is_string())
       name = n->get<std::string>();
-  const Where at{
-      file, "body " + std::to_string(index) + (name.empty() ? "" : " (" + shownName(name) + ")")};
+  const Where at{file, "body " + std::to_string(index) +
+                           (name.empty() ? "" : " (" + quoteName(name, '"') + ")")};
   if (!j.is_object()) at.fail("", "must be an object");
   onlyKnown(
       j,
@@ -327,25 +314,21 @@ SceneDesc parseScene(std::string_view text, const std::string& name) {
   if (text.size() > kMaxSceneBytes)
     throw SceneError(name + ": the file is larger than " + std::to_string(kMaxSceneBytes >> 20) +
                      " MiB");
-  // The parser's callback sees every value as it opens and every key: refusing depth here
-  // bounds the parser's stack and every later walk of the tree (an error message renders the
-  // offending value); a key seen twice in one object is refused rather than silently taking
-  // the last one.
-  std::vector<std::vector<std::string>> keys;  // per open object, its keys so far
+  // The parser's callback sees every value as it opens and every key (game/json_guard.h):
+  // refusing depth here bounds the parser's stack and every later walk of the tree (an error
+  // message renders the offending value); a key seen twice in one object is refused rather than
+  // silently taking the last one.
+  JsonGuard limits(kMaxSceneDepth);
   const json::parser_callback_t guard = [&](int depth, json::parse_event_t event, json& value) {
-    if (event == json::parse_event_t::object_start || event == json::parse_event_t::array_start) {
-      if (depth >= kMaxSceneDepth)
+    switch (limits.check(depth, event, value)) {
+      case JsonGuard::Problem::tooDeep:
         throw SceneError(name + ": not a scene: JSON nested deeper than " +
                          std::to_string(kMaxSceneDepth) + " levels");
-      if (event == json::parse_event_t::object_start) keys.emplace_back();
-    } else if (event == json::parse_event_t::object_end) {
-      keys.pop_back();
-    } else if (event == json::parse_event_t::key && !keys.empty()) {
-      const std::string key = value.get<std::string>();
-      for (const std::string& k : keys.back())
-        if (k == key)
-          throw SceneError(name + ": the key " + shownName(key) + " appears twice in one object");
-      keys.back().push_back(key);
+      case JsonGuard::Problem::duplicateKey:
+        throw SceneError(name + ": the key " + quoteName(value.get<std::string>(), '"') +
+                         " appears twice in one object");
+      case JsonGuard::Problem::none:
+        break;
     }
     return true;
   };
@@ -379,23 +362,11 @@ SceneDesc parseScene(std::string_view text, const std::string& name) {
 }
 
 SceneDesc loadScene(const std::string& path) {
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(status))
-    throw SceneError(path + ": cannot open the file: it does not exist");
-  if (std::filesystem::is_directory(status))
-    throw SceneError(path + ": cannot open the file: it is a directory");
-  // Refused before reading: the parsed tree takes about ten times the file.
-  if (const std::uintmax_t size = std::filesystem::file_size(path, ec);
-      !ec && size > kMaxSceneBytes)
-    throw SceneError(path + ": the file is larger than " + std::to_string(kMaxSceneBytes >> 20) +
-                     " MiB");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneError(path + ": cannot open the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw SceneError(path + ": cannot read the file");
-  return parseScene(text.str(), path);
+  // The size refused before reading: the parsed tree takes about ten times the file.
+  std::string text;
+  if (const auto why = readInputFile(path, kMaxSceneBytes, text))
+    throw SceneError(path + ": " + *why);
+  return parseScene(text, path);
 }
 
 BuiltWorld buildWorld(const SceneDesc& scene) {
@@ -413,7 +384,7 @@ BuiltWorld buildWorld(const SceneDesc& scene) {
       std::string what = e.what();
       if (what.rfind("body: ", 0) == 0) what = what.substr(6);
       throw SceneError(scene.source + ": body " + std::to_string(i) +
-                       (b.name.empty() ? "" : " (" + shownName(b.name) + ")") + ": " + what);
+                       (b.name.empty() ? "" : " (" + quoteName(b.name, '"') + ")") + ": " + what);
     }
   }
   return built;
@@ -454,17 +425,22 @@ std::string stateToJson(const SceneState& state) {
 
 void writeFileAtomically(const std::string& path, const std::string& text) {
   const std::string temporary = path + ".part";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) throw SceneError(path + ": cannot write (cannot create " + temporary + ")");
-    out << text;
-    out.flush();
-    if (!out) throw SceneError(path + ": cannot write (disk full or I/O error)");
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    std::remove(temporary.c_str());
-    throw SceneError(path + ": cannot write (rename from " + temporary + " failed)");
-  }
+  // Each failure says why, from the errno of the call that failed ("No such file or directory",
+  // "Is a directory", "No space left on device"), and leaves no temporary file behind.
+  auto fail = [&](const std::string& what, int error, bool made) {
+    if (made) std::remove(temporary.c_str());
+    throw SceneError(path + ": cannot write: " + what + ": " + std::strerror(error));
+  };
+  std::FILE* out = std::fopen(temporary.c_str(), "wb");
+  if (out == nullptr) fail("cannot create " + temporary, errno, false);
+  errno = 0;
+  const bool written = std::fwrite(text.data(), 1, text.size(), out) == text.size();
+  const int writeError = errno;
+  const bool closed = std::fclose(out) == 0;  // the last flush: a full disk may show only here
+  if (!written || !closed)
+    fail("writing " + temporary + " failed", written ? errno : writeError, true);
+  if (std::rename(temporary.c_str(), path.c_str()) != 0)
+    fail("rename from " + temporary + " failed", errno, true);
 }
 
 }  // namespace game

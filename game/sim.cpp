@@ -11,6 +11,7 @@
 
 #include "game/cli.h"
 #include "game/commands/command_line.h"
+#include "game/quote.h"
 #include "game/scene.h"
 #include "game/view/frame_output.h"
 #include "physics/contact_solver.h"
@@ -53,13 +54,46 @@ bool resolveTrace(const std::string& list, const SceneDesc& scene, std::vector<s
   return true;
 }
 
+// A body the world had to take out of the run (its state not finite or beyond the world's
+// quarantine speed, physics/world.h): the scene cannot be run as written, so the run stops with
+// one line naming the body as the scene does, "body 3 ("ball")", and the step.
+std::string quarantineMessage(const SceneDesc& scene, const BuiltWorld& built,
+                              const std::vector<rc::QuarantineEvent>& events, long step) {
+  const rc::QuarantineEvent& e = events.front();
+  std::string body = "a body";
+  for (std::size_t i = 0; i < built.ids.size(); ++i)
+    if (built.ids[i] == e.body) {
+      const std::string& name = scene.bodies[i].name;
+      body = "body " + std::to_string(i) + (name.empty() ? "" : " (" + quoteName(name, '"') + ")");
+    }
+  char speed[32];
+  std::snprintf(speed, sizeof speed, "%.0f", static_cast<double>(scene.world.quarantineSpeed));
+  std::string what;
+  switch (e.cause) {
+    case rc::QuarantineCause::motion:
+      what = "its motion left it not finite or faster than " + std::string(speed) + " m/s";
+      break;
+    case rc::QuarantineCause::contact:
+      what = "its contacts left it not finite or faster than " + std::string(speed) + " m/s";
+      break;
+    case rc::QuarantineCause::forceField:
+      what = "a force on it was not finite";
+      break;
+  }
+  std::string more;
+  if (events.size() > 1) more = " (and " + std::to_string(events.size() - 1) + " more bodies)";
+  return scene.source + ": " + body + ": quarantined in step " + std::to_string(step) + ", " +
+         what + more + "; the run stops";
+}
+
 }  // namespace
 
 int runSim(std::span<const std::string_view> args) {
   CLI::App app{
       "Steps a scene file N times at its dt and prints one summary line (steps, simulated\n"
       "time, state hash, milliseconds per step) on stdout. Scene files: game/README.md.\n"
-      "Exit codes: 0 done, 1 bad scene or unwritable output, 2 bad command line.",
+      "Exit codes: 0 done, 1 bad scene (a body the world had to quarantine mid-run too) or\n"
+      "unwritable output, 2 bad command line.",
       "ricochet sim"};
   std::string scenePath, outPath, csvPath, trace, integrator;
   long steps = -1;
@@ -95,11 +129,15 @@ int runSim(std::span<const std::string_view> args) {
   frames.overlay = !noOverlay;  // on by default for a scene: it is a debugging view
   if (trace.empty() != csvPath.empty()) return usageError("--trace and --csv go together");
   const RunInput inputs[] = {{"the scene", scenePath}};
-  if (const auto e = checkFrameOptions(frames, inputs)) {
-    if (e->exitCode == 2) return usageError(e->message);
-    std::fprintf(stderr, "ricochet sim: %s\n", e->message.c_str());
-    return e->exitCode;
-  }
+  if (const auto e = checkFrameOptions(frames, inputs)) return refuse("ricochet sim", *e);
+  // --out and --csv: neither the scene nor each other (nor a sheet or video), and each a file
+  // that can be made, all before the run rather than after it.
+  const RunOutput outputs[] = {
+      {"--out", outPath}, {"--csv", csvPath}, {"--sheet", frames.sheet}, {"--video", frames.video}};
+  std::optional<RunFileError> outputError = outputOverwritesAnother(outputs, inputs);
+  for (std::size_t i = 0; i < 2 && !outputError; ++i)
+    outputError = outputFileUnwritable(outputs[i]);
+  if (outputError) return refuse("ricochet sim", *outputError);
   if (lanes == 8 && rc::ContactSolver::widestLanes() != 8)
     return usageError("--lanes 8 needs a processor with AVX2, which this one lacks");
 
@@ -147,6 +185,10 @@ int runSim(std::span<const std::string_view> args) {
     rc::Profile sum;
     for (long k = 1; k <= steps; ++k) {
       built.world->step(scene.dt);
+      if (const auto& bad = built.world->quarantineEvents(); !bad.empty()) {
+        std::fprintf(stderr, "ricochet sim: %s\n", quarantineMessage(scene, built, bad, k).c_str());
+        return 1;
+      }
       const rc::Profile& p = built.world->profile();
       sum.updatePairs += p.updatePairs;
       sum.narrowphase += p.narrowphase;

@@ -6,14 +6,15 @@
 
 #include <cstdint>
 #include <cstdio>
-#include <filesystem>
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "game/level/level.h"
 #include "game/match/input.h"
+#include "game/run_files.h"
 
 namespace game {
 
@@ -63,13 +64,22 @@ inline std::optional<std::int64_t> parseTick(const std::string& text) {
   }
 }
 
-// Whether two paths name one file (the same inode, through links and relative paths alike): an
-// output that is an input of the run is refused, never overwritten.
-inline bool sameFile(const std::string& a, const std::string& b) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec) && !ec;
-  return fs::absolute(a, ec).lexically_normal() == fs::absolute(b, ec).lexically_normal();
+// A level's files as inputs of the run (game/run_files.h): the map, then its external tilesets,
+// which an output must not overwrite either.
+inline std::vector<RunInput> levelInputs(const Level& level) {
+  std::vector<RunInput> inputs;
+  for (std::size_t i = 0; i < level.files.size(); ++i)
+    inputs.push_back({i == 0 ? "the level" : "a tileset of the level", level.files[i]});
+  return inputs;
+}
+
+// A refused input or output as the command's one line on stderr ("--help" hinted for a
+// command-line error); returns the exit code.
+inline int refuse(const char* command, const RunFileError& error) {
+  std::fprintf(
+      stderr, "%s: %s%s\n", command, error.message.c_str(),
+      error.exitCode == kExitUsage ? (std::string(" (try ") + command + " --help)").c_str() : "");
+  return error.exitCode;
 }
 
 }  // namespace game

@@ -6,6 +6,7 @@
 
 #include "game/cli.h"
 #include "game/commands/command_line.h"
+#include "game/quote.h"
 #include "game/session/batch.h"
 #include "game/session/recording.h"
 #include "game/weapons/weapon_table.h"
@@ -59,11 +60,14 @@ int runInfo(std::span<const std::string_view> args) {
                 whole ? "true" : "false", jsonString(integrity).c_str());
   } else {
     std::printf("recording %s: %" PRIu64 " bytes, %zu chunks\n", path.c_str(), r.bytes, r.chunks);
-    std::printf("recorded by %s (simulation %u)\n", h.program.c_str(), h.simulation);
-    std::printf("level %s (content hash %016" PRIx64 ")\n", h.level.c_str(), h.levelHash);
-    std::printf("weapons from %s, seed %" PRIu64 ", %d players, %d bots\n", h.weaponsSource.c_str(),
-                h.seed, h.players, h.bots);
-    std::printf("world %d substeps, %s\n", h.substeps, h.integrator.c_str());
+    // The header's texts quoted and cut (game/quote.h): a forged header's level may be a
+    // megabyte of anything, newlines and terminal escapes included.
+    std::printf("recorded by %s (simulation %u)\n", quoteName(h.program).c_str(), h.simulation);
+    std::printf("level %s (content hash %016" PRIx64 ")\n", quoteName(h.level).c_str(),
+                h.levelHash);
+    std::printf("weapons from %s, seed %" PRIu64 ", %d players, %d bots\n",
+                quoteName(h.weaponsSource).c_str(), h.seed, h.players, h.bots);
+    std::printf("world %d substeps, %s\n", h.substeps, quoteName(h.integrator).c_str());
     std::printf(
         "ticks %lld (%.1f s at %d per second), %zu hashes (every %d), %zu keyframes "
         "(every %d)\n",

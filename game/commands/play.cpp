@@ -17,6 +17,7 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "game/cli.h"
@@ -82,18 +83,11 @@ int runPlay(std::span<const std::string_view> args) {
   if (!inputPath.empty() && inputPath != "-") runInputs.push_back({"the input script", inputPath});
   auto frameError = frameOptionsFrom(frameArgs, frameOptions);
   if (!frameError) frameError = checkFrameOptions(frameOptions, runInputs);
-  if (frameError) {
-    std::fprintf(stderr, "ricochet play: %s%s\n", frameError->message.c_str(),
-                 frameError->exitCode == 2 ? " (try ricochet play --help)" : "");
-    return frameError->exitCode;
-  }
-  if (!recordPath.empty())
-    for (const RunInput& input : runInputs)
-      if (sameFile(recordPath, input.path)) {
-        std::fprintf(stderr, "ricochet play: --record %s is %s, an input of the run\n",
-                     recordPath.c_str(), input.what.c_str());
-        return kExitUsage;
-      }
+  // The recording: not an input, nor the sheet or the video.
+  const RunOutput outputs[] = {
+      {"--record", recordPath}, {"--sheet", frameOptions.sheet}, {"--video", frameOptions.video}};
+  if (!frameError) frameError = outputOverwritesAnother(outputs, runInputs);
+  if (frameError) return refuse("ricochet play", *frameError);
 
   try {
     MatchConfig config;
@@ -103,7 +97,13 @@ int runPlay(std::span<const std::string_view> args) {
     config.profile = profile;
     config.solverLanes = lanes;
     config.weapons = loadWeaponTable(weaponsPath);
-    Match match(loadLevel(levelPath), config);
+    Level level = loadLevel(levelPath);
+    // The level's tilesets are inputs too, known once it is read: before anything is written.
+    const std::vector<RunInput> levelFiles = levelInputs(level);
+    std::optional<RunFileError> outputError = checkFrameOptions(frameOptions, levelFiles);
+    if (!outputError) outputError = outputOverwritesAnother(outputs, levelFiles);
+    if (outputError) return refuse("ricochet play", *outputError);
+    Match match(std::move(level), config);
     std::ifstream scriptFile;
     std::optional<InputScript> script;
     if (!inputPath.empty()) {

@@ -45,9 +45,11 @@ int runRender(std::span<const std::string_view> args) {
   if (!tick) return usage("--tick must be a tick or seconds (90s), got '" + tickText + "'");
   int width = 0, height = 0;
   if (const std::optional<std::string> bad = parseSize(sizeText, width, height)) return usage(*bad);
-  for (const std::string& input : {path, levelPath})
-    if (!input.empty() && sameFile(out, input))
-      return usage("-o " + out + " is an input of the run (" + input + ")");
+  const RunOutput outputs[] = {{"-o", out}};
+  const RunInput givenInputs[] = {{"the recording", path}, {"the level", levelPath}};
+  if (auto e = outputOverwritesAnother(outputs, givenInputs);
+      e || (e = outputFileUnwritable(outputs[0])))
+    return refuse("ricochet render", *e);
 #ifndef RICOCHET_HAS_RENDER
   (void)overlay;
   return usage("this ricochet was built without the renderer (-DRICOCHET_RENDER=OFF)");
@@ -60,8 +62,11 @@ int runRender(std::span<const std::string_view> args) {
                    static_cast<long long>(recording.ticks));
       return kExitBadInput;
     }
+    // The level and its tilesets, known once the recording says where it is.
+    ReplaySetup setup(recording, levelPath);
+    if (const auto e = outputOverwritesAnother(outputs, levelInputs(setup.level())))
+      return refuse("ricochet render", *e);
     ReplayOptions options;
-    options.level = levelPath;
     options.from = std::max<std::int64_t>(0, *tick - MatchView::kBlastTicks);
     options.to = *tick;
     std::unique_ptr<MatchView> view;
@@ -76,7 +81,7 @@ int runRender(std::span<const std::string_view> args) {
       renderer = std::make_unique<render::Renderer>();
       render::writePng(out, renderer->render(view->draw(m.state(), viewOptions), view->camera()));
     };
-    const ReplayReport report = replayRecording(recording, options);
+    const ReplayReport report = replayRecording(setup, recording, options);
     if (!renderer) {
       std::fprintf(stderr, "ricochet render: %s: the replay stopped at tick %lld (%s)\n",
                    path.c_str(), static_cast<long long>(report.end), report.message.c_str());

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "game/cli.h"
 #include "game/commands/command_line.h"
@@ -75,11 +76,7 @@ int runReplay(std::span<const std::string_view> args) {
     if (!frameError) frameError = checkFrameOptions(frameOptions, inputs);
     if (!frameError && frameOptions.enabled() && !batch.empty())
       frameError = FrameOptionError{kExitUsage, "--frames is for one recording, not --batch"};
-    if (frameError) {
-      std::fprintf(stderr, "ricochet replay: %s%s\n", frameError->message.c_str(),
-                   frameError->exitCode == kExitUsage ? " (try ricochet replay --help)" : "");
-      return frameError->exitCode;
-    }
+    if (frameError) return refuse("ricochet replay", *frameError);
   }
 
   auto usage = [](const std::string& what) {
@@ -115,6 +112,14 @@ int runReplay(std::span<const std::string_view> args) {
 
   try {
     const Recording recording = loadRecording(path);
+    ReplaySetup setup(recording, options.level);
+    if (frameOptions.enabled()) {
+      // The level and its tilesets, known once the recording says where it is: before any frame.
+      std::vector<RunInput> inputs = levelInputs(setup.level());
+      inputs.push_back({"the recording", path});
+      if (const auto e = checkFrameOptions(frameOptions, inputs))
+        return refuse("ricochet replay", *e);
+    }
     // Frames from the first tick played on (the view made from the match as it is there).
     std::unique_ptr<MatchFrames> frames;
     if (frameOptions.enabled()) {
@@ -133,7 +138,7 @@ int runReplay(std::span<const std::string_view> args) {
       progress.update(tick, frames ? frames->framesAdded() : -1);
     };
     const auto start = std::chrono::steady_clock::now();
-    const ReplayReport report = replayRecording(recording, options);
+    const ReplayReport report = replayRecording(setup, recording, options);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (frames) frames->finish();

@@ -1,10 +1,10 @@
 #include "game/level/json_fields.h"
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
-#include <system_error>
+#include <string>
+
+#include "game/input_file.h"
+#include "game/json_guard.h"
 
 namespace game::json_fields {
 
@@ -19,16 +19,24 @@ std::string field(const char* key) {
 Json parseText(std::string_view text, const ErrorContext& at) {
   if (text.size() > kMaxFileBytes)
     at.fail("the file is larger than " + std::to_string(kMaxFileBytes >> 20) + " MiB");
-  // The callback sees every value as it opens: refusing depth here bounds the parser's own
-  // stack and every recursive walk of the tree after it.
-  const Json::parser_callback_t limitDepth = [&at](int depth, Json::parse_event_t event, Json&) {
-    if ((event == Json::parse_event_t::object_start || event == Json::parse_event_t::array_start) &&
-        depth >= kMaxDepth)
-      at.fail("not a Tiled file: JSON nested deeper than " + std::to_string(kMaxDepth) + " levels");
+  // The callback sees every value as it opens and every key (game/json_guard.h): refusing depth
+  // here bounds the parser's own stack and every recursive walk of the tree after it; a key twice
+  // in one object is refused, not silently the last one's.
+  JsonGuard limits(kMaxDepth);
+  const Json::parser_callback_t guard = [&](int depth, Json::parse_event_t event, Json& value) {
+    switch (limits.check(depth, event, value)) {
+      case JsonGuard::Problem::tooDeep:
+        at.fail("not a Tiled file: JSON nested deeper than " + std::to_string(kMaxDepth) +
+                " levels");
+      case JsonGuard::Problem::duplicateKey:
+        at.fail("the key " + quoteName(value.get<std::string>()) + " appears twice in one object");
+      case JsonGuard::Problem::none:
+        break;
+    }
     return true;
   };
   try {
-    return Json::parse(text.begin(), text.end(), limitDepth);
+    return Json::parse(text.begin(), text.end(), guard);
   } catch (const Json::exception& e) {
     // nlohmann's messages: "[json.exception.parse_error.101] parse error at line L, column C:
     // what", or "[json.exception.out_of_range.406] number overflow parsing '1e999'". Keep what
@@ -41,19 +49,9 @@ Json parseText(std::string_view text, const ErrorContext& at) {
 }
 
 Json parseFile(const std::string& path, const ErrorContext& at) {
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(status)) at.fail("cannot open the file: it does not exist");
-  if (std::filesystem::is_directory(status)) at.fail("cannot open the file: it is a directory");
-  const std::uintmax_t size = std::filesystem::file_size(path, ec);
-  if (!ec && size > kMaxFileBytes)
-    at.fail("the file is larger than " + std::to_string(kMaxFileBytes >> 20) + " MiB");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) at.fail("cannot open the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) at.fail("cannot read the file");
-  return parseText(text.str(), at);
+  std::string text;
+  if (const auto why = readInputFile(path, kMaxFileBytes, text)) at.fail(*why);
+  return parseText(text, at);
 }
 
 std::string describe(const Json& value) {

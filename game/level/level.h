@@ -115,6 +115,9 @@ struct LevelSettings {
 
 struct Level {
   std::string source;  // the map file
+  // Every file it was read from: the map, then its external tilesets (TiledMap::files). The
+  // commands refuse an output that names one of them.
+  std::vector<std::string> files;
   LevelSettings settings;
   std::vector<LevelObject> objects;
   std::vector<LevelSpawn> spawns;

@@ -8,16 +8,14 @@
 #include <string>
 #include <string_view>
 
+#include "game/quote.h"  // quoteName: names from the file in messages
+
 namespace game {
 
 class LevelError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
-
-// A name or value taken from a file, made safe for a one-line message: quoted, control
-// characters escaped, cut at 60 characters.
-std::string quoteName(std::string_view text);
 
 // Where in which file a value sits: the file, then "layer 'walls'", "object 12", "property
 // 'friction'", ... Copied and extended as the reader descends, so every message says the path.

@@ -250,6 +250,7 @@ Level levelFromMap(const TiledMap& map) {
   const ErrorContext at(map.file);
   Level level;
   level.source = map.file;
+  level.files = map.files;
   LevelSettings& settings = level.settings;
   const ErrorContext mapAt = at.in("map");
   settings.pixelsPerMeter =

@@ -107,6 +107,9 @@ struct TiledLayer {
 
 struct TiledMap {
   std::string file;
+  // Every file read to make it, for the commands that must never write over one: the map (when
+  // read from a file), then each external tileset once, in the order the map names them.
+  std::vector<std::string> files;
   int width = 0, height = 0;          // tiles
   int tileWidth = 0, tileHeight = 0;  // pixels
   TiledProperties properties;

@@ -325,6 +325,9 @@ TiledMap mapFromJson(const Json& root, const std::string& name, const std::strin
   if (const Json* tilesets = array(root, "tilesets", at, false)) {
     for (std::size_t i = 0; i < tilesets->size(); ++i) {
       map.tilesets.push_back(readTileset((*tilesets)[i], at, directory, i));
+      const std::string& file = map.tilesets.back().file;
+      if (file != name && std::find(map.files.begin(), map.files.end(), file) == map.files.end())
+        map.files.push_back(file);
       if (i > 0 && map.tilesets[i].firstGid <= map.tilesets[i - 1].firstGid)
         at.fail("tileset [" + std::to_string(i) + "]: 'firstgid' " +
                 std::to_string(map.tilesets[i].firstGid) +
@@ -344,8 +347,10 @@ TiledMap parseTiledMap(std::string_view text, const std::string& name,
 
 TiledMap readTiledMap(const std::string& path) {
   const std::string directory = fs::path(path).parent_path().string();
-  return mapFromJson(parseFile(path, ErrorContext(path)), path,
-                     directory.empty() ? "." : directory);
+  TiledMap map =
+      mapFromJson(parseFile(path, ErrorContext(path)), path, directory.empty() ? "." : directory);
+  map.files.insert(map.files.begin(), path);
+  return map;
 }
 
 }  // namespace game

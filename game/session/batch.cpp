@@ -10,6 +10,8 @@
 #include <mutex>
 #include <thread>
 
+#include "game/input_file.h"
+
 namespace game {
 std::string jsonString(const std::string& s) {
   std::string out = "\"";
@@ -62,8 +64,17 @@ std::vector<std::string> batchFiles(const std::string& folderOrList) {
   std::ifstream in(folderOrList);
   if (!in) throw RecordingError(folderOrList + ": cannot open the list");
   const fs::path base = fs::path(folderOrList).parent_path();
+  // Bounded, as the list may be a pipe (`--batch <(find ...)`) or a device: a path is at most
+  // 4096 characters, a list at most 2^20 recordings.
   std::string line;
-  while (std::getline(in, line)) {
+  bool tooLong = false;
+  for (std::size_t number = 1; readBoundedLine(in, line, 4096, tooLong); ++number) {
+    if (tooLong)
+      throw RecordingError(folderOrList + ": line " + std::to_string(number) +
+                           " is over 4096 characters: not a list of recordings");
+    if (files.size() >= kMaxBatchRecordings)
+      throw RecordingError(folderOrList + ": more than " + std::to_string(kMaxBatchRecordings) +
+                           " recordings in the list");
     while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t'))
       line.pop_back();
     if (line.empty() || line.front() == '#') continue;

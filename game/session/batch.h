@@ -29,6 +29,9 @@ std::vector<std::string> batchFiles(const std::string& folderOrList);
 // The shard's share of the files: those at positions i, i + n, i + 2n, ...
 std::vector<std::string> shardOf(const std::vector<std::string>& files, Shard shard);
 
+// A list of recordings longer than this is refused (it may be a pipe or a device).
+inline constexpr std::size_t kMaxBatchRecordings = std::size_t{1} << 20;
+
 struct BatchOptions {
   Shard shard;
   int jobs = 1;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "game/input_file.h"
 #include "physics/trig.h"
 
 namespace game {
@@ -23,9 +24,10 @@ InputScript::InputScript(std::istream& in, std::string name, int players)
 
 bool InputScript::readLine() {
   std::string text;
-  while (std::getline(in_, text)) {
+  bool tooLong = false;
+  while (readBoundedLine(in_, text, 4096, tooLong)) {
     ++lineNumber_;
-    if (text.size() > 4096)
+    if (tooLong)
       throw InputScriptError(name_ + ":" + std::to_string(lineNumber_) + ": the line is over " +
                              "4096 characters");
     const std::size_t hash = text.find('#');

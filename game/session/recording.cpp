@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "game/match/match_snapshot.h"
+#include "game/quote.h"
 #include "physics/bytes.h"
 #include "physics/integrate.h"
 
@@ -66,9 +67,9 @@ RecordingHeader decodeHeader(std::span<const std::uint8_t> bytes) {
   h.program = getText(r, bytes, "the program's name");
   h.simulation = r.u32();
   if (h.simulation != kSimulationVersion)
-    r.fail("recorded by " + h.program + " with simulation version " + std::to_string(h.simulation) +
-           "; this ricochet replays version " + std::to_string(kSimulationVersion) +
-           " (record it again with this one)");
+    r.fail("recorded by " + quoteName(h.program) + " with simulation version " +
+           std::to_string(h.simulation) + "; this ricochet replays version " +
+           std::to_string(kSimulationVersion) + " (record it again with this one)");
   h.level = getText(r, bytes, "the level's path");
   if (h.level.empty()) r.fail("it names no level");
   h.levelHash = r.u64();

@@ -6,10 +6,9 @@
 #include <array>
 #include <cerrno>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <iterator>
-#include <system_error>
+
+#include "game/input_file.h"
 
 namespace game {
 namespace {
@@ -141,21 +140,9 @@ RecordingContents readRecording(std::span<const std::uint8_t> bytes, const std::
 }
 
 std::vector<std::uint8_t> readRecordingBytes(const std::string& path) {
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(status))
-    throw RecordingError(path + ": cannot open the file: it does not exist");
-  if (std::filesystem::is_directory(status))
-    throw RecordingError(path + ": cannot open the file: it is a directory");
-  if (const std::uintmax_t size = std::filesystem::file_size(path, ec);
-      !ec && size > kMaxRecordingBytes)
-    throw RecordingError(path + ": the file is larger than " +
-                         std::to_string(kMaxRecordingBytes >> 30) + " GiB");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw RecordingError(path + ": cannot open the file");
-  std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),
-                                  std::istreambuf_iterator<char>());
-  if (in.bad()) throw RecordingError(path + ": cannot read the file");
+  std::vector<std::uint8_t> bytes;
+  if (const auto why = readInputFile(path, kMaxRecordingBytes, bytes))
+    throw RecordingError(path + ": " + *why);
   return bytes;
 }
 

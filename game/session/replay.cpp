@@ -7,6 +7,7 @@
 
 #include "game/level/level_error.h"
 #include "game/level/level_loader.h"
+#include "game/quote.h"
 #include "game/weapons/weapon_table.h"
 
 namespace game {
@@ -57,9 +58,12 @@ ReplaySetup::ReplaySetup(const Recording& recording, const std::string& levelOve
             .lexically_normal()
             .string();
     std::error_code ec;
+    // The header's path is quoted and cut (a forged one may be a megabyte of anything); where
+    // it was looked for is said when that shows nothing more of it.
     if (!fs::exists(levelPath_, ec))
-      throw RecordingError(recording.path + ": its level '" + h.level + "' is not at " +
-                           levelPath_ + " (give it with --level)");
+      throw RecordingError(recording.path + ": its level " + quoteName(h.level) + " is not " +
+                           (isPlainText(h.level) ? "at " + levelPath_ : "where it says") +
+                           " (give it with --level)");
   }
   try {
     level_ = loadLevel(levelPath_);
@@ -67,8 +71,8 @@ ReplaySetup::ReplaySetup(const Recording& recording, const std::string& levelOve
     throw RecordingError(recording.path + ": its level: " + e.what());
   }
   try {
-    config_.weapons = parseWeaponTable(
-        h.weaponsText, recording.path + " (its weapon table, from " + h.weaponsSource + ")");
+    config_.weapons = parseWeaponTable(h.weaponsText, recording.path + " (its weapon table, from " +
+                                                          quoteName(h.weaponsSource) + ")");
   } catch (const WeaponTableError& e) {
     throw RecordingError(e.what());
   }
@@ -101,6 +105,11 @@ std::unique_ptr<Match> ReplaySetup::makeMatch() {
 
 ReplayReport replayRecording(const Recording& rec, const ReplayOptions& options) {
   ReplaySetup setup(rec, options.level, options.testHook);
+  return replayRecording(setup, rec, options);
+}
+
+ReplayReport replayRecording(ReplaySetup& setup, const Recording& rec,
+                             const ReplayOptions& options) {
   std::unique_ptr<Match> match = setup.makeMatch();
   ReplayReport report;
   const std::int64_t last = std::clamp<std::int64_t>(options.to.value_or(rec.ticks), 0, rec.ticks);

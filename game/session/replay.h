@@ -26,6 +26,8 @@ class ReplaySetup {
               std::function<void(MatchState&)> testHook = {});
   std::unique_ptr<Match> makeMatch();
   const std::string& levelPath() const { return levelPath_; }
+  // The level as read (Level::files: the map and its tilesets, which no output may overwrite).
+  const Level& level() const { return level_; }
 
  private:
   std::string levelPath_;
@@ -67,5 +69,9 @@ struct ReplayReport {
 
 // Plays the recording as the options say. RecordingError when it cannot be played at all.
 ReplayReport replayRecording(const Recording& recording, const ReplayOptions& options);
+// The same with its setup made beforehand (a command checks its outputs against the level's
+// files first); options.level and options.testHook are then the setup's business.
+ReplayReport replayRecording(ReplaySetup& setup, const Recording& recording,
+                             const ReplayOptions& options);
 
 }  // namespace game

@@ -26,15 +26,6 @@ namespace fs = std::filesystem;
 namespace game {
 namespace {
 
-// Whether two paths name the same file, whether or not it exists yet.
-bool samePath(const fs::path& a, const fs::path& b) {
-  std::error_code ec;
-  if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
-  const fs::path ca = fs::weakly_canonical(fs::absolute(a, ec), ec);
-  const fs::path cb = fs::weakly_canonical(fs::absolute(b, ec), ec);
-  return !ec && ca == cb;
-}
-
 std::optional<FrameOptionError> usage(std::string message) {
   return FrameOptionError{2, std::move(message)};
 }
@@ -108,7 +99,7 @@ std::optional<FrameOptionError> checkFrameOptions(const FrameOptions& options,
   for (const auto& [option, path] : outputs) {
     if (path->empty()) continue;
     for (const RunInput& input : inputs)
-      if (!input.path.empty() && samePath(*path, input.path))
+      if (!input.path.empty() && sameFile(*path, input.path))
         return usage(std::string(option) + " '" + *path + "' is " + input.what +
                      ", an input of this run");
   }
@@ -119,7 +110,7 @@ std::optional<FrameOptionError> checkFrameOptions(const FrameOptions& options,
     const fs::path p(*path);
     const std::string name = p.filename().string();
     if (!path->empty() && name.rfind("frame_", 0) == 0 && p.extension() == ".png" &&
-        samePath(p.parent_path().empty() ? fs::path(".") : p.parent_path(), options.directory))
+        sameFile(p.parent_path().empty() ? fs::path(".") : p.parent_path(), options.directory))
       return usage(std::string(option) + " '" + *path + "' is the name of a frame of the run");
   }
   return std::nullopt;
@@ -168,7 +159,7 @@ void checkParent(const char* option, const std::string& file, const fs::path& fr
   if (fs::is_directory(file, ec))
     throw FrameOutputError(std::string(option) + ": '" + file + "' is a directory");
   const fs::path parent = fs::path(file).parent_path();
-  if (!parent.empty() && !fs::is_directory(parent, ec) && !samePath(parent, frames))
+  if (!parent.empty() && !fs::is_directory(parent, ec) && !sameFile(parent, frames))
     throw FrameOutputError(std::string(option) + ": cannot write '" + file + "': no directory '" +
                            parent.string() + "'");
 }

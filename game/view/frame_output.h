@@ -18,6 +18,8 @@
 #include <string>
 #include <string_view>
 
+#include "game/run_files.h"
+
 namespace CLI {
 class App;
 }
@@ -39,10 +41,7 @@ struct FrameOptions {
 };
 
 // A line for the user and the exit code it calls for (2: the command line, 1: an output).
-struct FrameOptionError {
-  int exitCode = 2;
-  std::string message;
-};
+using FrameOptionError = RunFileError;
 
 // --every K (a whole number >= 1) and --size WxH (16 to 8192 pixels each): nothing, or the
 // error's text ("--size must be WxH with 16 to 8192 pixels each, got '10x10'").
@@ -58,12 +57,6 @@ struct FrameArgs {
 };
 void addFrameOptions(CLI::App& app, FrameArgs& args, const std::string& unit = "step");
 std::optional<FrameOptionError> frameOptionsFrom(const FrameArgs& args, FrameOptions& out);
-
-// A file the run reads ("the level", its path): no output may overwrite it.
-struct RunInput {
-  std::string what;
-  std::string path;
-};
 
 // Every check that writes nothing: --sheet and --video need --frames, the renderer was built,
 // no output is an input of the run, the sheet or video is not also a frame's file or each other.

@@ -104,7 +104,10 @@ render::Camera cameraForWorld(const rc::World& world, int width, int height) {
   rc::AABB box{};
   if (!boundsOf(true, box) && !boundsOf(false, box)) box = {{-10, -10}, {10, 10}};
   const rc::Vec2 grow = 0.25f * (box.upper - box.lower) + rc::Vec2{1, 1};
-  return render::Camera::fit({box.lower - grow, box.upper + grow}, width, height, 8.0f);
+  // 8 pixels of margin, less in a small picture (a 16x16 frame, the smallest --size takes,
+  // would have none left), as the match view does.
+  const float margin = std::min(8.0f, 0.05f * static_cast<float>(std::min(width, height)));
+  return render::Camera::fit({box.lower - grow, box.upper + grow}, width, height, margin);
 }
 
 }  // namespace game

@@ -2,14 +2,13 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <system_error>
 #include <vector>
 
+#include "game/input_file.h"
+#include "game/json_guard.h"
 #include "physics/trig.h"
 
 #ifndef RICOCHET_WEAPONS_FILE
@@ -196,23 +195,18 @@ std::optional<std::size_t> WeaponTable::grenade() const {
 WeaponTable parseWeaponTable(std::string_view text, const std::string& source) {
   const At at(source);
   if (text.size() > kMaxFileBytes)
-    at.fail("the file is larger than " + std::to_string(kMaxFileBytes >> 10) + " KiB");
-  // The parser's callback sees every value as it opens and every key: too deep is refused, and
-  // so is a key twice in one object (nlohmann would keep the last one silently).
-  std::vector<std::vector<std::string>> keys;  // per open object, its keys so far
+    at.fail("the file is larger than " + byteSizeText(kMaxFileBytes));
+  // Too deep is refused as it opens, and so is a key twice in one object (game/json_guard.h).
+  JsonGuard limits(kMaxDepth);
   const Json::parser_callback_t guard = [&](int depth, Json::parse_event_t event, Json& value) {
-    if (event == Json::parse_event_t::object_start || event == Json::parse_event_t::array_start) {
-      if (depth >= kMaxDepth)
+    switch (limits.check(depth, event, value)) {
+      case JsonGuard::Problem::tooDeep:
         at.fail("not a weapon table: JSON nested deeper than " + std::to_string(kMaxDepth) +
                 " levels");
-      if (event == Json::parse_event_t::object_start) keys.emplace_back();
-    } else if (event == Json::parse_event_t::object_end) {
-      if (!keys.empty()) keys.pop_back();
-    } else if (event == Json::parse_event_t::key && !keys.empty()) {
-      const std::string key = value.get<std::string>();
-      for (const std::string& k : keys.back())
-        if (k == key) at.fail("the key " + describe(value) + " appears twice in one object");
-      keys.back().push_back(key);
+      case JsonGuard::Problem::duplicateKey:
+        at.fail("the key " + describe(value) + " appears twice in one object");
+      case JsonGuard::Problem::none:
+        break;
     }
     return true;
   };
@@ -244,20 +238,9 @@ WeaponTable parseWeaponTable(std::string_view text, const std::string& source) {
 }
 
 WeaponTable loadWeaponTable(const std::string& path) {
-  const At at(path);
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(status)) at.fail("cannot open the file: it does not exist");
-  if (std::filesystem::is_directory(status)) at.fail("cannot open the file: it is a directory");
-  const std::uintmax_t size = std::filesystem::file_size(path, ec);
-  if (!ec && size > kMaxFileBytes)
-    at.fail("the file is larger than " + std::to_string(kMaxFileBytes >> 10) + " KiB");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) at.fail("cannot open the file");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) at.fail("cannot read the file");
-  return parseWeaponTable(buffer.str(), path);
+  std::string text;
+  if (const auto why = readInputFile(path, kMaxFileBytes, text)) At(path).fail(*why);
+  return parseWeaponTable(text, path);
 }
 
 std::string bundledWeaponTablePath() {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <zlib.h>
 
+#include <chrono>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -100,6 +101,47 @@ TEST_F(BadMap, MissingFileOrDirectory) {
   const std::string directory = dir.path().string();
   EXPECT_EQ(levelErrorOf([&] { game::loadLevel(directory); }),
             directory + ": cannot open the file: it is a directory");
+  // A device has no size to check: /dev/zero was read until memory ran out, as a map and as a
+  // tileset.
+  EXPECT_EQ(levelErrorOf([&] { game::loadLevel("/dev/zero"); }),
+            "/dev/zero: cannot open the file: it is not a regular file");
+  json m = baseMap();
+  m["tilesets"][0] = {{"firstgid", 1}, {"source", "/dev/zero"}};
+  EXPECT_EQ(levelErrorOf([&] { game::loadLevel(dir.write("zero.tmj", m.dump())); }),
+            "/dev/zero: cannot open the file: it is not a regular file");
+}
+
+TEST_F(BadMap, DuplicateKeys) {
+  // nlohmann keeps the last of a key given twice: a map's second 'width' silently won.
+  std::string text = baseMap().dump();
+  text.insert(1, "\"width\": 9, ");
+  errorOfText(text, {"bad.tmj: the key 'width' appears twice in one object"});
+  // Inside a nested object, in an external tileset (named by its file), and a key of control
+  // characters (escaped: the message stays one line).
+  json m = baseMap();
+  std::string objects = m.dump();
+  const std::size_t at = objects.find("\"x\":40");
+  ASSERT_NE(at, std::string::npos);
+  objects.insert(at, "\"x\": 41, ");
+  errorOfText(objects, {"bad.tmj: the key 'x' appears twice in one object"});
+  dir.write("twice.tsj",
+            R"({"type": "tileset", "name": "t", "name": "u", "tilewidth": 32, "tileheight": 32,)"
+            R"( "tilecount": 1})");
+  m["tilesets"][0] = {{"firstgid", 1}, {"source", "twice.tsj"}};
+  EXPECT_EQ(levelErrorOf([&] { game::loadLevel(dir.write("m.tmj", m.dump())); }),
+            dir.file("twice.tsj") + ": the key 'name' appears twice in one object");
+  text = baseMap().dump();
+  text.insert(1, "\"a\\n\\u001b\": 1, \"a\\n\\u001b\": 2, ");
+  errorOfText(text, {"bad.tmj: the key 'a\\x0a\\x1b' appears twice in one object"});
+  // 200,000 keys in one object (keys Tiled's format does not use are ignored): the check keeps
+  // each object's keys in a set, n log n.
+  json wide = baseMap();
+  for (int i = 0; i < 200000; ++i)
+    wide["k" + std::to_string(i)] = 0;
+  const std::string widePath = dir.write("wide.tmj", wide.dump());
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_NO_THROW(game::loadLevel(widePath));
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
 }
 
 TEST_F(BadMap, InvalidJson) {

@@ -141,6 +141,9 @@ TEST(LevelLoader, CorridorsAsCountedByHand) {
 // barrels and 3 tile objects (2 crates, a barrel: boxes); a hazard trigger (circle).
 TEST(LevelLoader, ArenaAsCountedByHand) {
   const Level level = game::loadLevel(levelPath("arena.tmj"));
+  // The files it was read from, which the commands never write over: the map and its tileset.
+  EXPECT_EQ(level.files,
+            (std::vector<std::string>{levelPath("arena.tmj"), levelPath("tiles.tsj")}));
   ASSERT_EQ(level.objects.size(), 21u);
   const auto& o = level.objects;
   EXPECT_EQ(chainLoopSizes(o[0].shapes), (std::vector<int>{4, 4}));

@@ -4,7 +4,9 @@
 // window, entity, body and field; the synctest passes, and fails on hidden state; every kind of
 // damaged or hostile file is refused or played up to its damage with one line saying where.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -16,7 +18,9 @@
 #include "game/level_test_support.h"
 #include "game/match/match.h"
 #include "game/match/match_snapshot.h"
+#include "game/quote.h"
 #include "game/session/batch.h"
+#include "game/session/input_script.h"
 #include "game/session/recording.h"
 #include "game/session/replay.h"
 #include "physics/bytes.h"
@@ -271,6 +275,8 @@ TEST(Session, UnusableFilesAreRefusedInOneLine) {
   expectRefused(dir.write("empty.rec", ""), "not a ricochet recording");
   expectRefused(dir.path().string(), "it is a directory");
   expectRefused(dir.file("missing.rec"), "does not exist");
+  // A device has no size to check: /dev/zero was read until memory ran out.
+  expectRefused("/dev/zero", "cannot open the file: it is not a regular file");
   expectRefused(dir.write("text.rec", "{\"not\": \"a recording\"}"), "not a ricochet recording");
   std::vector<std::uint8_t> future = bytesOf(good);
   putU32(future, 8, 99);
@@ -303,6 +309,98 @@ TEST(Session, UnusableFilesAreRefusedInOneLine) {
   flipped[12 + 8 + 3] ^= 0x10;
   writeBytes(dir.file("head.rec"), flipped);
   expectRefused(dir.file("head.rec"), "its header is damaged: chunk 0 at byte 12: CRC mismatch");
+}
+
+// What `ricochet CMD ARGS` prints: stdout, stderr and the exit code.
+struct CommandResult {
+  std::string out, err;
+  int code = -1;
+};
+CommandResult runRicochet(const ScratchDir& dir, const std::string& args) {
+  const std::string errFile = dir.file("stderr.txt");
+  const std::string command = std::string(RICOCHET_EXE) + " " + args + " 2>" + errFile;
+  CommandResult result;
+  std::FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) return result;
+  char buffer[4096];
+  std::size_t got = 0;
+  while ((got = std::fread(buffer, 1, sizeof buffer, pipe)) > 0)
+    result.out.append(buffer, got);
+  const int status = ::pclose(pipe);
+  result.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(errFile, std::ios::binary);
+  result.err.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return result;
+}
+
+// A header's texts are the file's, not ours: a forged level name of a megabyte with a newline
+// and a terminal escape in it was printed whole and raw by info and in replay's refusal. Now
+// quoted, escaped and cut (game/quote.h), by the library and by both commands.
+TEST(Session, HeaderTextsAreQuotedInEveryMessage) {
+  const ScratchDir dir;
+  game::MatchConfig config;
+  config.bots = 1;
+  game::Match match(game::loadLevel(levelPath("arena.tmj")), config);
+  const std::string path = dir.file("forged.rec");
+  game::RecordingHeader header = game::headerFor(match, levelPath("arena.tmj"), path);
+  const std::string forged = "a\nb\x1b[31m" + std::string(game::kMaxHeaderText - 16, 'x');
+  header.level = forged;
+  header.weaponsSource = forged;
+  {
+    game::Recorder recorder(path, header);
+    for (int t = 0; t < 10; ++t) {
+      match.tick();
+      recorder.afterTick(match);
+    }
+    recorder.finish(match);
+  }
+  const Recording r = game::loadRecording(path);
+  ASSERT_EQ(r.header.level, forged);
+  const std::string quoted =
+      "'a\\x0ab\\x1b[31m" + std::string(game::kMaxQuotedBytes - 8, 'x') + "...'";
+  auto expectShort = [&](const std::string& text, std::size_t lines) {
+    EXPECT_EQ(static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')), lines) << text;
+    EXPECT_EQ(text.find('\x1b'), std::string::npos) << text;
+    EXPECT_LT(text.size(), 200 * lines) << text.substr(0, 400);
+  };
+  try {
+    verify(r);
+    ADD_FAILURE() << "a level nowhere was accepted";
+  } catch (const game::RecordingError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              path + ": its level " + quoted + " is not where it says (give it with --level)");
+  }
+  const CommandResult info = runRicochet(dir, "info " + path);
+  EXPECT_EQ(info.code, 0) << info.err;
+  expectShort(info.out, 7);
+  EXPECT_NE(info.out.find("\nlevel " + quoted + " (content hash "), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("\nweapons from " + quoted + ", seed 1"), std::string::npos) << info.out;
+  const CommandResult replay = runRicochet(dir, "replay " + path);
+  EXPECT_EQ(replay.code, 1);
+  EXPECT_EQ(replay.out, "");
+  expectShort(replay.err, 1);
+  EXPECT_NE(replay.err.find("its level " + quoted + " is not where it says"), std::string::npos)
+      << replay.err.substr(0, 400);
+}
+
+// What is read line by line (an input script, a list of recordings) may be a pipe or a device:
+// a line is bounded while it is read, not after. std::getline took /dev/zero's one endless line
+// until memory ran out.
+TEST(Session, EndlessLinesAreRefused) {
+  std::ifstream zero("/dev/zero", std::ios::binary);
+  game::InputScript script(zero, "/dev/zero", 1);
+  try {
+    script.inputsFor(0);
+    ADD_FAILURE() << "an endless line was accepted";
+  } catch (const game::InputScriptError& e) {
+    EXPECT_STREQ(e.what(), "/dev/zero:1: the line is over 4096 characters");
+  }
+  try {
+    game::batchFiles("/dev/zero");
+    ADD_FAILURE() << "an endless line was accepted";
+  } catch (const game::RecordingError& e) {
+    EXPECT_STREQ(e.what(), "/dev/zero: line 1 is over 4096 characters: not a list of recordings");
+  }
 }
 
 TEST(Session, LevelsThatAreMissingOrChangedAreRefused) {

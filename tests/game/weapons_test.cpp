@@ -638,6 +638,13 @@ TEST(WeaponTable, BundledAndBadFiles) {
   } catch (const game::WeaponTableError& e) {
     EXPECT_STREQ(e.what(), "/no/such/weapons.json: cannot open the file: it does not exist");
   }
+  // A device has no size to check: /dev/zero was read until memory ran out.
+  try {
+    game::loadWeaponTable("/dev/zero");
+    ADD_FAILURE();
+  } catch (const game::WeaponTableError& e) {
+    EXPECT_STREQ(e.what(), "/dev/zero: cannot open the file: it is not a regular file");
+  }
 }
 
 }  // namespace weapons_test

@@ -6,6 +6,7 @@
 #include <string>
 #include <string_view>
 
+#include "game/run_files.h"
 #include "support/box2d_world.h"
 
 int main(int argc, char** argv) {
@@ -40,6 +41,16 @@ int main(int argc, char** argv) {
   if (scenePath.empty() || steps < 0) {
     std::fprintf(stderr, "box2d_sim: usage: box2d_sim SCENE.json --steps N [--out STATE.json]\n");
     return 2;
+  }
+  // --out: not the scene, not a directory, in a directory that exists; before the run, as
+  // ricochet sim checks it.
+  const game::RunInput inputs[] = {{"the scene", scenePath}};
+  const game::RunOutput out{"--out", outPath};
+  auto outError = game::outputOverwritesAnother({&out, 1}, inputs);
+  if (!outError) outError = game::outputFileUnwritable(out);
+  if (outError) {
+    std::fprintf(stderr, "box2d_sim: %s\n", outError->message.c_str());
+    return outError->exitCode;
   }
   try {
     const game::SceneDesc scene = game::loadScene(scenePath);

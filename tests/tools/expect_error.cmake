@@ -1,8 +1,18 @@
-# Runs `${PROGRAM} ${ARG1} ${ARG2} ... ${ARG8}` (unset ones left out) and checks that it fails
-# the way a user is promised: exit code ${CODE}, nothing on stdout, exactly one line on stderr,
-# matching ${MATCH}.
-execute_process(COMMAND ${PROGRAM} ${ARG1} ${ARG2} ${ARG3} ${ARG4} ${ARG5} ${ARG6} ${ARG7} ${ARG8}
-                RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+# Runs `${PROGRAM} ${ARG1} ${ARG2} ... ${ARG8}` (unset ones left out), or `${PROGRAM}` with ARGS
+# (a list separated by '|', for longer command lines), and checks that it fails the way a user is
+# promised: exit code ${CODE}, nothing on stdout, exactly one line on stderr, matching ${MATCH}.
+# UNCHANGED names a file that must be the same, byte for byte, after the run (an input an output
+# was refused to overwrite).
+if(ARGS)
+  string(REPLACE "|" ";" args "${ARGS}")
+else()
+  set(args ${ARG1} ${ARG2} ${ARG3} ${ARG4} ${ARG5} ${ARG6} ${ARG7} ${ARG8})
+endif()
+if(UNCHANGED)
+  file(SHA256 "${UNCHANGED}" before)
+endif()
+execute_process(COMMAND ${PROGRAM} ${args} RESULT_VARIABLE code OUTPUT_VARIABLE out
+                ERROR_VARIABLE err)
 if(NOT code EQUAL CODE)
   message(FATAL_ERROR "exit code ${code}, expected ${CODE}; stderr: ${err}")
 endif()
@@ -16,5 +26,11 @@ if(NOT lines EQUAL 1 OR NOT err MATCHES "\n$")
 endif()
 if(NOT err MATCHES "${MATCH}")
   message(FATAL_ERROR "stderr does not match '${MATCH}': ${err}")
+endif()
+if(UNCHANGED)
+  file(SHA256 "${UNCHANGED}" after)
+  if(NOT before STREQUAL after)
+    message(FATAL_ERROR "${UNCHANGED} was changed")
+  endif()
 endif()
 message(STATUS "ok: ${err}")

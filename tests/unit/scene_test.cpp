@@ -2,7 +2,10 @@
 // and the field; a complete scene reads into the definitions it spells out; a scene-built
 // world steps exactly like the same world built by hand; outputs are written atomically.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -183,6 +186,23 @@ TEST(Scene, OutputsAreWrittenWhole) {
     EXPECT_EQ(std::string(e.what()).rfind(bad + ": cannot write", 0), 0u) << e.what();
   }
   EXPECT_THROW(game::loadScene((dir / "missing.json").string()), game::SceneError);
+  // Why a write failed, from errno: a state written over a directory was "rename from ...part
+  // failed" and nothing more.
+  std::filesystem::create_directories(dir / "taken");
+  try {
+    game::writeFileAtomically((dir / "taken").string(), "{}");
+    ADD_FAILURE() << "no error";
+  } catch (const game::SceneError& e) {
+    EXPECT_EQ(std::string(e.what()), (dir / "taken").string() + ": cannot write: rename from " +
+                                         (dir / "taken").string() + ".part failed: Is a directory");
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "taken.part"));
+  try {
+    game::writeFileAtomically(bad, "{}");
+  } catch (const game::SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find(".part: No such file or directory"), std::string::npos)
+        << e.what();
+  }
   std::filesystem::remove_all(dir);
 }
 
@@ -212,7 +232,7 @@ TEST(Scene, HostileInputGetsOneLine) {
   EXPECT_EQ(message.find('\n'), std::string::npos);
   EXPECT_EQ(message.find('\x1b'), std::string::npos);
   EXPECT_LT(message.size(), 200u) << message;
-  EXPECT_EQ(message.rfind("s.json: body 0 (\"a\\u000ab\\u001b[31mxxx", 0), 0u) << message;
+  EXPECT_EQ(message.rfind("s.json: body 0 (\"a\\x0ab\\x1b[31mxxx", 0), 0u) << message;
   // Larger than the limit: refused before parsing.
   EXPECT_EQ(errorOf(std::string(game::kMaxSceneBytes + 1, ' ')),
             "s.json: the file is larger than 32 MiB");
@@ -231,6 +251,68 @@ TEST(Scene, MissingFileAndDirectoryAreNamed) {
   EXPECT_EQ(loadError(dir.string()), dir.string() + ": cannot open the file: it is a directory");
   EXPECT_EQ(loadError((dir / "no_such_scene.json").string()),
             (dir / "no_such_scene.json").string() + ": cannot open the file: it does not exist");
+  // A device or a pipe has no size to check: /dev/zero was read until memory ran out, and a
+  // FIFO with no writer waited for ever.
+  EXPECT_EQ(loadError("/dev/zero"), "/dev/zero: cannot open the file: it is not a regular file");
+  const std::filesystem::path fifo = dir / ("ricochet_scene_fifo_" + std::to_string(::getpid()));
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_EQ(loadError(fifo.string()),
+            fifo.string() + ": cannot open the file: it is not a regular file");
+  std::filesystem::remove(fifo);
+}
+
+// A small valid scene cut short at every byte (a file half copied, a run killed while writing
+// it): each prefix is one line naming the file, never another exception or a crash.
+TEST(Scene, TruncatedAtEveryByte) {
+  const std::string text =
+      R"({"settings": {"gravity": [0, -10], "integrator": "rk4", "substeps": 4, "dt": 0.0166,)"
+      R"( "sleep": false, "bounds": {"lower": [-50, -50], "upper": [50, 50]}},)"
+      R"( "bodies": [{"name": "ground", "position": [0, -1],)"
+      R"( "shapes": [{"type": "box", "halfExtents": [20, 1], "friction": 0.5},)"
+      R"( {"type": "chain", "points": [[2, 0], [3, 0], [3, 1]], "loop": true}]},)"
+      R"( {"name": "ball \u00e9", "type": "dynamic", "position": [0, 4], "angle": 0.5,)"
+      R"( "linearVelocity": [1, -2.5e-1], "bullet": true, "shapes": [{"type": "circle",)"
+      R"( "radius": 0.5, "density": 2}, {"type": "polygon", "points": [[0, 0], [1, 0], [0, 1]]}]}]})";
+  ASSERT_EQ(errorOf(text), "no error");
+  for (std::size_t n = 0; n < text.size(); ++n) {
+    const std::string message = errorOf(text.substr(0, n));
+    EXPECT_EQ(message.rfind("s.json: ", 0), 0u) << n << ": " << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << n << ": " << message;
+  }
+}
+
+// Huge values where small ones belong: one short line each, in bounded time.
+TEST(Scene, HugeArraysStringsAndObjects) {
+  // A million numbers where a pair belongs: the value shown is cut.
+  std::string zeros = "[0";
+  for (int i = 0; i < 1000000; ++i)
+    zeros += ", 0";
+  zeros += "]";
+  std::string message = errorOf(R"({"settings": {"gravity": )" + zeros + R"(}, "bodies": []})");
+  EXPECT_EQ(message.rfind("s.json: settings, gravity: must be [x, y], got [0,0,0,", 0), 0u)
+      << message.substr(0, 200);
+  EXPECT_LT(message.size(), 120u);
+  // 16 MiB strings as a name and as an unknown key (a key used to be shown whole).
+  const std::string huge(16u << 20, 'x');
+  message = errorOf(R"({"bodies": [{"name": ")" + huge + R"(", "type": 7}]})");
+  EXPECT_EQ(message.rfind("s.json: body 0 (\"xxxxxxxx", 0), 0u) << message.substr(0, 200);
+  EXPECT_LT(message.size(), 200u);
+  message = errorOf(R"({"bodies": [], ")" + huge + R"(\n": 1})");
+  EXPECT_EQ(message.rfind("s.json: \"xxxxxxxx", 0), 0u) << message.substr(0, 200);
+  EXPECT_NE(message.find("...\": unknown field"), std::string::npos) << message.substr(0, 200);
+  EXPECT_LT(message.size(), 120u);
+  EXPECT_EQ(errorOf(R"({"bodies": [], "a\nb": 1})"), "s.json: \"a\\x0ab\": unknown field");
+  // 200,000 keys in one object: the duplicate-key check kept each object's keys in a list and
+  // took n^2 / 2 comparisons (100,000 keys: 11 s; a 32 MiB file: hours). Now n log n.
+  std::string keys = R"({"bodies": [])";
+  for (int i = 0; i < 200000; ++i)
+    keys += ", \"k" + std::to_string(i) + "\": 0";
+  keys += "}";
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_EQ(errorOf(keys), "s.json: k0: unknown field");
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_LT(seconds, 10.0);
 }
 
 // Shapes outside the quadtree's square are scanned by every query (20,000 circles there: 198

@@ -1,0 +1,61 @@
+// Text taken from a file (a name, a path, a key) as an error or a summary shows it: quoted,
+// control characters (C0 and C1) written as \xNN so that a message stays one line and cannot drive
+// the terminal (a newline, an ANSI escape), and cut at 60 bytes (never inside a UTF-8 character),
+// so that a 1 MiB name makes a short line. One helper for every reader and command: the scene, the
+// level, the recording's header. Header-only: the scene and level libraries both use it.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+namespace game {
+
+inline constexpr std::size_t kMaxQuotedBytes = 60;
+
+// 'walls', "crate", 'two\x0alines', 'xxxx...' (the quote given: the scene's messages use ").
+inline std::string quoteName(std::string_view text, char quote = '\'') {
+  std::size_t shown = text.size();
+  if (shown > kMaxQuotedBytes) {
+    shown = kMaxQuotedBytes;
+    // Back to the start of a UTF-8 character (continuation bytes are 10xxxxxx), at most three.
+    for (int k = 0; k < 3 && shown > 0 && (static_cast<unsigned char>(text[shown]) & 0xC0) == 0x80;
+         ++k)
+      --shown;
+  }
+  static constexpr char kHex[] = "0123456789abcdef";
+  auto escaped = [](std::string& out, unsigned char c) {
+    out += "\\x";
+    out += kHex[c >> 4];
+    out += kHex[c & 15];
+  };
+  std::string out(1, quote);
+  for (std::size_t i = 0; i < shown; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    const auto next = static_cast<unsigned char>(i + 1 < shown ? text[i + 1] : '\0');
+    if (c < 0x20 || c == 0x7F) {
+      escaped(out, c);
+    } else if (c == 0xC2 && next >= 0x80 && next <= 0x9F) {
+      // U+0080 to U+009F, the C1 controls (U+009B is a terminal's CSI, as ESC [ is).
+      escaped(out, c);
+      escaped(out, next);
+      ++i;
+    } else if (c == static_cast<unsigned char>(quote) || c == '\\') {
+      out += '\\';
+      out += static_cast<char>(c);
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  if (shown < text.size()) out += "...";
+  out += quote;
+  return out;
+}
+
+// Whether quoteName(text, quote) only adds the quotes: nothing to escape, nothing cut. A message
+// may then show the text as it is (a typo'd key, a level's path).
+inline bool isPlainText(std::string_view text, char quote = '\'') {
+  return quoteName(text, quote).size() == text.size() + 2;
+}
+
+}  // namespace game

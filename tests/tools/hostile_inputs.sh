@@ -5,7 +5,7 @@
 #
 #   hostile_inputs.sh RICOCHET [WORK_DIR]
 set -euo pipefail
-ricochet=$1
+ricochet=$(realpath "$1")
 work=${2:-$(mktemp -d)}
 mkdir -p "$work"
 cd "$work"
@@ -15,8 +15,9 @@ python3 - << 'EOF'
 import json, math
 body = lambda extra: {"type": "dynamic", "shapes": [{"type": "circle", "radius": 0.5}], **extra}
 open("deep.json", "w").write('{"bodies": [{"position": ' + "[" * 100000 + "]" * 100000 + "}]}")
-n = 1000000
-points = [[math.cos(2 * math.pi * i / n), math.sin(2 * math.pi * i / n)] for i in range(n)]
+n = 1000000  # 6 decimals each: 27 MB, under the 32 MiB limit, so the hull sees them all
+points = [[round(math.cos(2 * math.pi * i / n), 6), round(math.sin(2 * math.pi * i / n), 6)]
+          for i in range(n)]
 json.dump({"bodies": [{"type": "dynamic", "shapes": [{"type": "polygon", "points": points}]}]},
           open("million_points.json", "w"))
 with open("whitespace.json", "w") as f:
@@ -41,7 +42,7 @@ row() {
   local err code
   code=0
   /usr/bin/time -f "%e %M" -o time.txt "$@" > /dev/null 2> err.txt || code=$?
-  read -r seconds kib < time.txt
+  read -r seconds kib < <(tail -n 1 time.txt)
   err=$(head -c 300 err.txt | head -n 1)
   printf '| %s | %s | %s s | %s MiB | %s | %s |\n' "$what" "$code" "$seconds" "$((kib / 1024))" \
     "$(wc -l < err.txt)" "${err//|/\\|}"

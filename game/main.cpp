@@ -1,4 +1,5 @@
 #include <cstdio>
+#include <exception>
 #include <string_view>
 #include <vector>
 
@@ -45,13 +46,22 @@ int main(int argc, char** argv) {
   }
   std::string_view command = args[0];
   std::span<const std::string_view> rest(args.data() + 1, args.size() - 1);
-  if (command == "demo") return game::runDemo(rest);
-  if (command == "sim") return game::runSim(rest);
-  if (command == "level") return game::runLevel(rest);
-  if (command == "play") return game::runPlay(rest);
-  if (command == "replay") return game::runReplay(rest);
-  if (command == "info") return game::runInfo(rest);
-  if (command == "render") return game::runRender(rest);
+  // Each command words its own errors; this is the last line of defence, so that nothing a
+  // command did not foresee (a renderer that cannot load, memory refused) ends in
+  // std::terminate: one line naming the command, exit 1.
+  try {
+    if (command == "demo") return game::runDemo(rest);
+    if (command == "sim") return game::runSim(rest);
+    if (command == "level") return game::runLevel(rest);
+    if (command == "play") return game::runPlay(rest);
+    if (command == "replay") return game::runReplay(rest);
+    if (command == "info") return game::runInfo(rest);
+    if (command == "render") return game::runRender(rest);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "ricochet %.*s: %s\n", static_cast<int>(command.size()), command.data(),
+                 e.what());
+    return 1;
+  }
   std::fprintf(stderr, "ricochet: unknown command '%.*s' (try ricochet --help)\n",
                static_cast<int>(command.size()), command.data());
   return 2;

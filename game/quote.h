@@ -55,7 +55,9 @@ inline std::string quoteName(std::string_view text, char quote = '\'') {
 // Whether quoteName(text, quote) only adds the quotes: nothing to escape, nothing cut. A message
 // may then show the text as it is (a typo'd key, a level's path).
 inline bool isPlainText(std::string_view text, char quote = '\'') {
-  return quoteName(text, quote).size() == text.size() + 2;
+  // Compared as text, not by length: a cut text plus "..." can have the length of the whole.
+  return text.size() <= kMaxQuotedBytes &&
+         quoteName(text, quote) == std::string(1, quote) + std::string(text) + quote;
 }
 
 }  // namespace game

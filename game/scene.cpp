@@ -300,7 +300,8 @@ void fitBounds(SceneDesc& scene) {
   }
   if (!any || scene.world.bounds.contains(extent)) return;
   const float side = std::max(extent.upper.x - extent.lower.x, extent.upper.y - extent.lower.y);
-  const float half = 0.75f * side + 1.0f;
+  // At least the default square's size: a small far cluster has room to move and fall.
+  const float half = std::max(0.75f * side + 1.0f, 512.0f);
   const rc::Vec2 c = extent.center();
   if (!std::isfinite(half) || !std::isfinite(c.x + half) || !std::isfinite(c.y + half) ||
       !std::isfinite(c.x - half) || !std::isfinite(c.y - half))

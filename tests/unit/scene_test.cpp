@@ -199,6 +199,7 @@ TEST(Scene, OutputsAreWrittenWhole) {
   EXPECT_FALSE(std::filesystem::exists(dir / "taken.part"));
   try {
     game::writeFileAtomically(bad, "{}");
+    ADD_FAILURE() << "no error";
   } catch (const game::SceneError& e) {
     EXPECT_NE(std::string(e.what()).find(".part: No such file or directory"), std::string::npos)
         << e.what();
@@ -233,6 +234,14 @@ TEST(Scene, HostileInputGetsOneLine) {
   EXPECT_EQ(message.find('\x1b'), std::string::npos);
   EXPECT_LT(message.size(), 200u) << message;
   EXPECT_EQ(message.rfind("s.json: body 0 (\"a\\x0ab\\x1b[31mxxx", 0), 0u) << message;
+  // An unknown key of 63 bytes, cut to 60 plus "...", is as long as itself quoted: it must still
+  // be quoted, not shown raw with its newline and escape.
+  const std::string key = std::string(60, 'k') + "\\n\\u001b[";
+  const std::string unknown =
+      errorOf("{\"bodies\": [{\"type\": \"dynamic\", \"" + key + "\": 1}]}");
+  EXPECT_EQ(unknown.find('\n'), std::string::npos) << unknown;
+  EXPECT_EQ(unknown.find('\x1b'), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("kkk..."), std::string::npos) << unknown;
   // Larger than the limit: refused before parsing.
   EXPECT_EQ(errorOf(std::string(game::kMaxSceneBytes + 1, ' ')),
             "s.json: the file is larger than 32 MiB");

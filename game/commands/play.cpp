@@ -119,14 +119,16 @@ int runPlay(std::span<const std::string_view> args) {
       }
       script.emplace(*in, inputPath == "-" ? "standard input" : inputPath, players);
     }
+    // The frames first: a frames directory that cannot be made refuses the run before the
+    // recorder empties a file given to --record.
+    MatchFrames frames(frameOptions, "ricochet play", match.state(), static_cast<long>(ticks),
+                       levelPath);
     std::optional<Recorder> recorder;
     if (!recordPath.empty()) {
       RecordingHeader header = headerFor(match, levelPath, recordPath);
       header.keyframeEvery = keyframeEvery;
       recorder.emplace(recordPath, header);
     }
-    MatchFrames frames(frameOptions, "ricochet play", match.state(), static_cast<long>(ticks),
-                       levelPath);
     Progress progress("ricochet play", "tick", ticks);
     const auto start = std::chrono::steady_clock::now();
     std::size_t shots = 0, explosions = 0, crashes = 0;

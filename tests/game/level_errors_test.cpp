@@ -11,6 +11,7 @@
 
 #include "game/level/level_loader.h"
 #include "game/level/tiled_reader.h"
+#include "game/quote.h"
 #include "level_test_support.h"
 #include "physics/random.h"
 
@@ -352,6 +353,35 @@ TEST_F(BadMap, NamesFromTheFileStayOnOneLine) {
   m["layers"][1]["name"] = "two\nlines";
   m["layers"][1]["objects"][0]["type"] = "nope";
   errorOf(m, {"layer 'two\\x0alines': object 1: unknown type"});
+}
+
+// The quoting every message uses for text from a file: well-formed UTF-8 kept, control
+// characters (C0, DEL, C1) and bytes that are not UTF-8 escaped, a long text cut between
+// characters.
+TEST(Quote, ControlsAndBytesThatAreNotUtf8AreEscaped) {
+  using game::quoteName;
+  EXPECT_EQ(quoteName("walls"), "'walls'");
+  EXPECT_EQ(quoteName("it's"), "'it\\'s'");
+  EXPECT_EQ(quoteName("caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x98\x80"),
+            "'caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x98\x80'");
+  EXPECT_EQ(quoteName("a\nb\x1b[31m\x7f"), "'a\\x0ab\\x1b[31m\\x7f'");
+  EXPECT_EQ(quoteName("\xc2\x9b"
+                      "1m"),
+            "'\\xc2\\x9b1m'");  // C1 CSI as UTF-8
+  EXPECT_EQ(quoteName("\x9b"
+                      "1m"),
+            "'\\x9b1m'");                                              // a lone 8-bit CSI
+  EXPECT_EQ(quoteName("\xe2\x82"), "'\\xe2\\x82'");                    // a cut character
+  EXPECT_EQ(quoteName("\xed\xa0\x80"), "'\\xed\\xa0\\x80'");           // a surrogate
+  EXPECT_EQ(quoteName("\xc0\xaf"), "'\\xc0\\xaf'");                    // an overlong '/'
+  EXPECT_EQ(quoteName("\xf4\x90\x80\x80"), "'\\xf4\\x90\\x80\\x80'");  // past U+10FFFF
+  std::string accents;
+  for (int i = 0; i < 100; ++i)
+    accents += "\xc3\xa9";
+  EXPECT_EQ(quoteName(accents), "'" + accents.substr(0, 60) + "...'");
+  EXPECT_EQ(quoteName("x" + accents), "'x" + accents.substr(0, 58) + "...'");
+  EXPECT_FALSE(game::isPlainText(std::string(60, 'k') + "\n\x1b["));
+  EXPECT_TRUE(game::isPlainText(std::string(60, 'k')));
 }
 
 // Every prefix of a bundled level (a file cut short by a crash or a bad copy) and thousands

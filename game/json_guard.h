@@ -40,4 +40,12 @@ class JsonGuard {
   std::vector<std::set<std::string>> keys_;  // per open object, its keys so far
 };
 
+// At most 40 characters of a value, for the readers' messages: the JSON as written, with every
+// character past ASCII as \uXXXX (so a cut never splits a character and no C1 control or 8-bit
+// CSI reaches a terminal), invalid UTF-8 replaced rather than thrown.
+inline std::string describeJson(const nlohmann::json& value) {
+  std::string s = value.dump(-1, ' ', true, nlohmann::json::error_handler_t::replace);
+  return s.size() > 40 ? s.substr(0, 37) + "..." : s;
+}
+
 }  // namespace game

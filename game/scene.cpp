@@ -30,10 +30,8 @@ struct Where {
   }
 };
 
-// At most 40 characters of a value, for messages (invalid UTF-8 replaced, not thrown).
 std::string describe(const json& j) {
-  std::string s = j.dump(-1, ' ', false, json::error_handler_t::replace);
-  return s.size() > 40 ? s.substr(0, 37) + "..." : s;
+  return describeJson(j);
 }
 
 // An unknown key as a message shows it: as it is when quoting would only add the quotes (a

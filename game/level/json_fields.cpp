@@ -55,8 +55,7 @@ Json parseFile(const std::string& path, const ErrorContext& at) {
 }
 
 std::string describe(const Json& value) {
-  std::string s = value.dump(-1, ' ', false, Json::error_handler_t::replace);
-  return s.size() > 40 ? s.substr(0, 37) + "..." : s;
+  return describeJson(value);
 }
 
 const Json* find(const Json& object, const char* key) {

@@ -9,6 +9,7 @@
 
 #include "game/input_file.h"
 #include "game/json_guard.h"
+#include "game/quote.h"
 #include "physics/trig.h"
 
 #ifndef RICOCHET_WEAPONS_FILE
@@ -45,12 +46,11 @@ class At {
 };
 
 std::string describe(const Json& value) {
-  std::string s = value.dump(-1, ' ', false, Json::error_handler_t::replace);
-  return s.size() > 40 ? s.substr(0, 37) + "..." : s;
+  return describeJson(value);
 }
 
 std::string quoted(const std::string& key) {
-  return "'" + key + "'";
+  return quoteName(key);
 }
 
 // Every key of the object must be one the reader knows: a misspelt field must not leave its

@@ -242,6 +242,11 @@ TEST(Scene, HostileInputGetsOneLine) {
   EXPECT_EQ(unknown.find('\n'), std::string::npos) << unknown;
   EXPECT_EQ(unknown.find('\x1b'), std::string::npos) << unknown;
   EXPECT_NE(unknown.find("kkk..."), std::string::npos) << unknown;
+  // A value shown in a message: characters past ASCII as \uXXXX, so a C1 CSI stays text and a
+  // cut at 40 characters never splits one.
+  const std::string csi = errorOf(R"({"bodies": [{"type": "\u009b31m\u00e9\u00e9"}]})");
+  EXPECT_EQ(csi.find("\xc2\x9b"), std::string::npos) << csi;
+  EXPECT_NE(csi.find(R"(got "\u009b31m\u00e9\u00e9")"), std::string::npos) << csi;
   // Larger than the limit: refused before parsing.
   EXPECT_EQ(errorOf(std::string(game::kMaxSceneBytes + 1, ' ')),
             "s.json: the file is larger than 32 MiB");

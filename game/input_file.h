@@ -5,14 +5,17 @@
 // too). Header-only: the scene, level, match and session libraries each use it.
 #pragma once
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstddef>
 #include <cstdint>
-#include <filesystem>
-#include <fstream>
+#include <cstring>
 #include <istream>
 #include <optional>
 #include <string>
-#include <system_error>
 
 namespace game {
 
@@ -31,31 +34,40 @@ inline std::string byteSizeText(std::uintmax_t bytes) {
 template <class Bytes>
 std::optional<std::string> readInputFile(const std::string& path, std::uintmax_t limit,
                                          Bytes& out) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (ec || !fs::exists(status)) return "cannot open the file: it does not exist";
-  if (fs::is_directory(status)) return "cannot open the file: it is a directory";
-  if (!fs::is_regular_file(status)) return "cannot open the file: it is not a regular file";
+  // Opened first, then looked at through the descriptor (not the path, which could be swapped
+  // for a pipe in between); O_NONBLOCK so that opening a FIFO never waits for a writer.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    const int error = errno;
+    if (error == ENOENT) return "cannot open the file: it does not exist";
+    return std::string("cannot open the file: ") + std::strerror(error);
+  }
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) return std::string("cannot read the file: ") + std::strerror(errno);
+  if (S_ISDIR(st.st_mode)) return "cannot open the file: it is a directory";
+  if (!S_ISREG(st.st_mode)) return "cannot open the file: it is not a regular file";
   const std::string tooLarge = "the file is larger than " + byteSizeText(limit);
-  const std::uintmax_t size = fs::file_size(path, ec);
-  if (ec) return "cannot read the file: " + ec.message();
-  if (size > limit) return tooLarge;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return "cannot open the file";
+  if (static_cast<std::uintmax_t>(st.st_size) > limit) return tooLarge;
   out.clear();
-  out.reserve(static_cast<std::size_t>(size));
+  out.reserve(static_cast<std::size_t>(st.st_size));
   using Byte = typename Bytes::value_type;
   static_assert(sizeof(Byte) == 1);
   char buffer[1 << 16];
-  while (in) {
-    in.read(buffer, sizeof buffer);
-    const auto got = static_cast<std::size_t>(in.gcount());
-    if (out.size() + got > limit) return tooLarge;
+  for (;;) {
+    const ssize_t got = ::read(fd, buffer, sizeof buffer);
+    if (got < 0) {
+      if (errno == EINTR) continue;
+      return std::string("cannot read the file: ") + std::strerror(errno);
+    }
+    if (got == 0) break;
+    if (out.size() + static_cast<std::size_t>(got) > limit) return tooLarge;
     const Byte* bytes = reinterpret_cast<const Byte*>(buffer);
     out.insert(out.end(), bytes, bytes + got);
   }
-  if (in.bad()) return "cannot read the file";
   return std::nullopt;
 }
 

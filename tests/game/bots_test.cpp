@@ -20,6 +20,7 @@
 #include "game/bots/sight.h"
 #include "game/level/level_loader.h"
 #include "game/match/match.h"
+#include "match_test_support.h"
 #include "physics/random.h"
 #include "physics/trig.h"
 
@@ -35,49 +36,9 @@ using game::NavGrid;
 using game::PlayerInput;
 using rc::Vec2;
 
-struct Box {
-  Vec2 at, half;
-};
-
-// A closed 40 x 40 m room (walls 1 m thick around it) with a player spawn, bot spawns and the
-// walls asked for.
-Level room(Vec2 player, std::vector<Vec2> bots, std::vector<Box> walls = {}) {
-  Level level;
-  level.source = "room";
-  level.settings.bounds = {{-20, -20}, {20, 20}};
-  auto addWall = [&](Vec2 at, Vec2 half) {
-    game::LevelObject o;
-    o.kind = game::LevelObjectKind::wall;
-    o.position = at;
-    o.shapes.push_back(rc::makeBox(half.x, half.y));
-    level.objects.push_back(o);
-  };
-  addWall({0, 20.5f}, {21, 0.5f});
-  addWall({0, -20.5f}, {21, 0.5f});
-  addWall({20.5f, 0}, {0.5f, 21});
-  addWall({-20.5f, 0}, {0.5f, 21});
-  for (const Box& w : walls)
-    addWall(w.at, w.half);
-  game::LevelSpawn p;
-  p.kind = game::SpawnKind::player;
-  p.position = player;
-  level.spawns.push_back(p);
-  for (Vec2 b : bots) {
-    game::LevelSpawn s;
-    s.kind = game::SpawnKind::bot;
-    s.position = b;
-    s.team = 1;
-    level.spawns.push_back(s);
-  }
-  return level;
-}
-
-MatchConfig config(int bots, std::uint64_t seed = 1) {
-  MatchConfig c;
-  c.bots = bots;
-  c.seed = seed;
-  return c;
-}
+using match_test_support::Box;
+using match_test_support::config;
+using match_test_support::room;
 
 Vec2 position(const MatchState& s, std::size_t actor) {
   return s.world->worldCenter(s.actors[actor].body);

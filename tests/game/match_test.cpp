@@ -14,6 +14,7 @@
 #include "game/match/match.h"
 #include "game/rules/damage.h"
 #include "game/weapons/weapons.h"
+#include "match_test_support.h"
 #include "physics/random.h"
 #include "physics/trig.h"
 
@@ -26,43 +27,13 @@ using game::MatchConfig;
 using game::PlayerInput;
 using rc::Vec2;
 
+using match_test_support::config;
+
 // An empty 40 x 40 m room with a player spawn at `player` and bot spawns at `bots`, and, if
 // `wall` is true, a 1 x 6 m wall centred at the origin.
 Level room(Vec2 player, std::vector<Vec2> bots, bool wall = false) {
-  Level level;
-  level.source = "room";
-  level.settings.bounds = {{-20, -20}, {20, 20}};
-  auto addWall = [&](Vec2 at, Vec2 half) {
-    game::LevelObject o;
-    o.kind = game::LevelObjectKind::wall;
-    o.position = at;
-    o.shapes.push_back(rc::makeBox(half.x, half.y));
-    level.objects.push_back(o);
-  };
-  addWall({0, 20.5f}, {21, 0.5f});
-  addWall({0, -20.5f}, {21, 0.5f});
-  addWall({20.5f, 0}, {0.5f, 21});
-  addWall({-20.5f, 0}, {0.5f, 21});
-  if (wall) addWall({0, 0}, {0.5f, 3});
-  game::LevelSpawn p;
-  p.kind = game::SpawnKind::player;
-  p.position = player;
-  level.spawns.push_back(p);
-  for (Vec2 b : bots) {
-    game::LevelSpawn s;
-    s.kind = game::SpawnKind::bot;
-    s.position = b;
-    s.team = 1;
-    level.spawns.push_back(s);
-  }
-  return level;
-}
-
-MatchConfig config(int bots, std::uint64_t seed = 1) {
-  MatchConfig c;
-  c.bots = bots;
-  c.seed = seed;
-  return c;
+  if (!wall) return match_test_support::room(player, bots);
+  return match_test_support::room(player, bots, {{{0, 0}, {0.5f, 3}}});
 }
 
 // Every input the encoding can hold survives bytes and back; continuous controls land on the

@@ -18,6 +18,7 @@
 #include "game/rules/impacts.h"
 #include "game/rules/pickups.h"
 #include "game/weapons/weapons.h"
+#include "match_test_support.h"
 
 // Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
 namespace rules_test {
@@ -29,19 +30,8 @@ using game::MatchConfig;
 using game::PlayerInput;
 using rc::Vec2;
 
-const game::WeaponTable& bundled() {
-  static const game::WeaponTable table =
-      game::loadWeaponTable(std::string(RICOCHET_SOURCE_DIR) + "/assets/weapons.json");
-  return table;
-}
-
-// Nothing but what the test adds; 60 x 60 m of broadphase.
-Level emptyLevel() {
-  Level level;
-  level.source = "test";
-  level.settings.bounds = {{-30, -30}, {30, 30}};
-  return level;
-}
+using match_test_support::bundled;
+using match_test_support::emptyLevel;
 
 void addSpawn(Level& level, game::SpawnKind kind, Vec2 at) {
   game::LevelSpawn s;

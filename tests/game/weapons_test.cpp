@@ -12,6 +12,7 @@
 
 #include "game/match/match.h"
 #include "game/weapons/weapons.h"
+#include "match_test_support.h"
 #include "physics/trig.h"
 
 // Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
@@ -27,22 +28,11 @@ using rc::Vec2;
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
 
 // The bundled table, read once (every test measures against its numbers).
-const game::WeaponTable& bundled() {
-  static const game::WeaponTable table =
-      game::loadWeaponTable(std::string(RICOCHET_SOURCE_DIR) + "/assets/weapons.json");
-  return table;
-}
+using match_test_support::bundled;
+using match_test_support::emptyLevel;
 
 const game::HitscanSpec& rifle() {
   return bundled().weapons[0].hitscan;
-}
-
-// A level with nothing in it but what the test adds; 60 x 60 m of broadphase.
-Level emptyLevel() {
-  Level level;
-  level.source = "test";
-  level.settings.bounds = {{-30, -30}, {30, 30}};
-  return level;
 }
 
 void addBox(Level& level, game::LevelObjectKind kind, Vec2 at, Vec2 half, LevelMaterial m = {},

@@ -247,11 +247,11 @@ BodyDesc parseBody(const json& j, std::size_t index, const std::string& file) {
   const Where at{file, "body " + std::to_string(index) +
                            (name.empty() ? "" : " (" + quoteName(name, '"') + ")")};
   if (!j.is_object()) at.fail("", "must be an object");
-  onlyKnown(
-      j,
-      {"name", "type", "position", "angle", "linearVelocity", "angularVelocity", "linearDamping",
-       "angularDamping", "gravityScale", "fixedRotation", "bullet", "allowSleep", "shapes"},
-      at, "");
+  onlyKnown(j,
+            {"name", "type", "position", "angle", "linearVelocity", "angularVelocity",
+             "linearDamping", "angularDamping", "gravityScale", "fixedRotation", "bullet",
+             "allowSleep", "force", "forcePoint", "torque", "shapes"},
+            at, "");
   if (const json* n = find(j, "name"); n != nullptr && !n->is_string())
     at.fail("name", "must be a string");
   BodyDesc body;
@@ -268,6 +268,15 @@ BodyDesc parseBody(const json& j, std::size_t index, const std::string& file) {
   d.fixedRotation = boolean(j, "fixedRotation", d.fixedRotation, at, "");
   d.bullet = boolean(j, "bullet", d.bullet, at, "");
   d.allowSleep = boolean(j, "allowSleep", d.allowSleep, at, "");
+  body.force = vec2(j, "force", {}, at, "");
+  body.torque = number(j, "torque", 0, at, "");
+  if (find(j, "forcePoint") != nullptr) {
+    body.forcePoint = vec2(j, "forcePoint", {}, at, "");
+    if (body.force == rc::Vec2{}) at.fail("forcePoint", "is given without a force");
+  }
+  // Box2D ignores a force on a body that is not dynamic; here it is a mistake in the file.
+  if (body.pushed() && d.type != rc::BodyType::dynamicBody)
+    at.fail(body.force == rc::Vec2{} ? "torque" : "force", "acts on dynamic bodies only");
   const json* shapes = find(j, "shapes");
   if (shapes != nullptr) {
     if (!shapes->is_array()) at.fail("shapes", "must be an array");
@@ -386,6 +395,39 @@ BuiltWorld buildWorld(const SceneDesc& scene) {
                        (b.name.empty() ? "" : " (" + quoteName(b.name, '"') + ")") + ": " + what);
     }
   }
+  // The pushed bodies, their forces and where each acts relative to the centre of mass in the
+  // body's frame (the stage gives the centre and the angle).
+  struct Push {
+    rc::BodyId id;
+    rc::Vec2 force, offset;
+    float torque;
+    bool atPoint;
+  };
+  std::vector<Push> pushes;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodyDesc& b = scene.bodies[i];
+    if (!b.pushed()) continue;
+    const rc::BodyId id = built.ids[i];
+    rc::Vec2 offset{};
+    if (b.forcePoint) {
+      const rc::Transform xf = built.world->transform(id);
+      offset = *b.forcePoint - rc::invRotate(xf.q, built.world->worldCenter(id) - xf.p);
+    }
+    pushes.push_back({id, b.force, offset, b.torque, b.forcePoint.has_value()});
+  }
+  if (!pushes.empty())
+    built.world->addForceField([pushes = std::move(pushes)](rc::ForceStage& stage) {
+      for (const Push& p : pushes) {
+        if (p.atPoint) {
+          const rc::Vec2 point =
+              stage.center(p.id) + rc::rotate(rc::Rot::fromAngle(stage.angle(p.id)), p.offset);
+          stage.addForceAt(p.id, p.force, point);
+        } else if (p.force != rc::Vec2{}) {
+          stage.addForce(p.id, p.force);
+        }
+        if (p.torque != 0.0f) stage.addTorque(p.id, p.torque);
+      }
+    });
   return built;
 }
 

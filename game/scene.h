@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -33,6 +34,13 @@ struct BodyDesc {
   std::string name;  // optional in the file; "" if absent
   rc::BodyDef def;
   std::vector<ShapeDesc> shapes;  // a chain is expanded into its links
+  // A constant force (N, world axes) and torque (N m) acting at every instant of the run, for
+  // scenes with an answer in closed form (a box spun by a torque, a sled pushed along).
+  // forcePoint is where the force acts, in the body's frame; absent, the centre of mass.
+  rc::Vec2 force{};
+  float torque = 0.0f;
+  std::optional<rc::Vec2> forcePoint;
+  bool pushed() const { return force.x != 0.0f || force.y != 0.0f || torque != 0.0f; }
 };
 
 struct SceneDesc {
@@ -52,7 +60,8 @@ SceneDesc loadScene(const std::string& path);
 // The same from text; `name` stands for the file in messages.
 SceneDesc parseScene(std::string_view text, const std::string& name);
 
-// Our world built from a scene; ids[i] is body i of the scene.
+// Our world built from a scene; ids[i] is body i of the scene. The bodies' constant forces are
+// one force field, evaluated at every stage of the integrator.
 struct BuiltWorld {
   std::unique_ptr<rc::World> world;
   std::vector<rc::BodyId> ids;

@@ -5,12 +5,15 @@
 // rather than approximated: capsules (no such shape), rounded polygons (its polygons have a fixed
 // 0.01 m skin), filter bits above 16 (its filters are 16-bit), polygons of more than 8 vertices.
 // Box2D has one integrator (semi-implicit Euler) and no substeps: those settings are ignored,
-// and it steps with 8 velocity and 3 position iterations, its testbed's defaults.
+// and it steps with 8 velocity and 3 position iterations, its testbed's defaults, unless told
+// otherwise. A body's constant force and torque are applied before every step (Box2D clears
+// them after each), waking the body as a force field wakes ours.
 #pragma once
 
 #include <box2d/box2d.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +24,14 @@ namespace rc::testing {
 struct Box2DScene {
   std::unique_ptr<b2World> world;
   std::vector<b2Body*> bodies;  // bodies[i] is body i of the scene
+  // The bodies with a constant force (at a point in the body's frame, or the centre) or torque.
+  struct Push {
+    b2Body* body;
+    b2Vec2 force;
+    float torque;
+    std::optional<b2Vec2> point;
+  };
+  std::vector<Push> pushed;
 
   explicit Box2DScene(const game::SceneDesc& scene) {
     world = std::make_unique<b2World>(b2Vec2(scene.world.gravity.x, scene.world.gravity.y));
@@ -50,10 +61,24 @@ struct Box2DScene {
       for (std::size_t s = 0; s < b.shapes.size(); ++s)
         addFixture(body, b.shapes[s], where + ", shapes[" + std::to_string(s) + "]");
       bodies.push_back(body);
+      if (b.pushed()) {
+        std::optional<b2Vec2> point;
+        if (b.forcePoint) point = b2Vec2(b.forcePoint->x, b.forcePoint->y);
+        pushed.push_back({body, b2Vec2(b.force.x, b.force.y), b.torque, point});
+      }
     }
   }
 
-  void step(float dt) { world->Step(dt, 8, 3); }
+  void step(float dt, int velocityIterations = 8, int positionIterations = 3) {
+    for (const Push& p : pushed) {
+      if (p.point)
+        p.body->ApplyForce(p.force, p.body->GetWorldPoint(*p.point), true);
+      else if (p.force != b2Vec2_zero)
+        p.body->ApplyForceToCenter(p.force, true);
+      if (p.torque != 0.0f) p.body->ApplyTorque(p.torque, true);
+    }
+    world->Step(dt, velocityIterations, positionIterations);
+  }
 
   game::SceneState state(const game::SceneDesc& scene, int steps, double time) const {
     game::SceneState out;

@@ -207,6 +207,7 @@ class WorldState {
   void prepareContacts();
   void prepareBodies(float dt);
   void integrateFreeMotion(int substep, float h);
+  void applyDamping(float h, bool move);
   void warmStart();
   void integratePositions(float h);
   void storeVelocities();

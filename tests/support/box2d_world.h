@@ -33,7 +33,13 @@ struct Box2DScene {
   };
   std::vector<Push> pushed;
 
-  explicit Box2DScene(const game::SceneDesc& scene) {
+  // Box2D's polygons carry a b2_polygonRadius (0.01 m) skin around the polygon they are given,
+  // so its boxes are 0.02 m wider than ours and rest 0.015 m higher on each other. Skin::inside
+  // gives it each box 0.01 m smaller (and denser by the area lost: the same mass), so that the
+  // surfaces are where ours are: for comparing heights against geometry.
+  enum class Skin { outside, inside };
+
+  explicit Box2DScene(const game::SceneDesc& scene, Skin skin = Skin::outside) : skin_(skin) {
     world = std::make_unique<b2World>(b2Vec2(scene.world.gravity.x, scene.world.gravity.y));
     world->SetAllowSleeping(scene.world.enableSleep);
     world->SetContinuousPhysics(scene.world.continuous);
@@ -97,7 +103,9 @@ struct Box2DScene {
   }
 
  private:
-  static void addFixture(b2Body* body, const game::ShapeDesc& desc, const std::string& where) {
+  Skin skin_;
+
+  void addFixture(b2Body* body, const game::ShapeDesc& desc, const std::string& where) {
     const ShapeDef& d = desc.def;
     if (d.filter.category > 0xFFFFu || (d.filter.mask != 0xFFFFFFFFu && d.filter.mask > 0xFFFFu))
       throw game::SceneError(where + ": Box2D 2.4.1 filters have 16 bits");
@@ -119,8 +127,16 @@ struct Box2DScene {
         fd.shape = &circle;
         break;
       case ShapeType::box:
-        polygon.SetAsBox(s.box.halfExtents.x, s.box.halfExtents.y,
-                         b2Vec2(s.box.center.x, s.box.center.y), 0.0f);
+        if (skin_ == Skin::inside) {
+          const float r = b2_polygonRadius, hx = s.box.halfExtents.x, hy = s.box.halfExtents.y;
+          if (hx <= 2 * r || hy <= 2 * r)
+            throw game::SceneError(where + ": too thin to lose Box2D's skin");
+          polygon.SetAsBox(hx - r, hy - r, b2Vec2(s.box.center.x, s.box.center.y), 0.0f);
+          fd.density = d.density * (hx * hy) / ((hx - r) * (hy - r));
+        } else {
+          polygon.SetAsBox(s.box.halfExtents.x, s.box.halfExtents.y,
+                           b2Vec2(s.box.center.x, s.box.center.y), 0.0f);
+        }
         fd.shape = &polygon;
         break;
       case ShapeType::polygon: {

@@ -215,7 +215,12 @@ void Quadtree::place(ProxyId id) {
   // Deepest level whose cells are at least as large as the proxy: span <= size / 2^level.
   int level = maxDepth_;
   if (span > 0.0f) {
-    int fit = static_cast<int>(std::floor(std::log2(size_ / span)));
+    // A proxy far smaller than the deepest cell (a denormal span makes the ratio infinite,
+    // whose log2 no int holds) goes to the deepest level.
+    const float ratio = size_ / span;
+    const int fit = ratio >= static_cast<float>(1 << maxDepth_)
+                        ? maxDepth_
+                        : static_cast<int>(std::floor(std::log2(ratio)));
     level = std::clamp(fit, 0, maxDepth_);
     // log2 rounding: step back while the cell is smaller than the proxy.
     while (level > 0 && span > size_ / static_cast<float>(1 << level))

@@ -427,6 +427,29 @@ TEST(Broadphase, ThousandProxiesAtOnePoint) {
   EXPECT_EQ(pairs.size(), 900u * 899u / 2u + 900u * 100u);
 }
 
+// A static proxy of a denormal size (a circle of radius 1e-39 m, which a scene file may give:
+// the scene fuzzer's find) sits at the deepest level, and pairs like any other; the level was
+// an infinite log2 cast to int before (undefined behaviour, caught by UBSan's
+// float-cast-overflow).
+TEST(Broadphase, ProxiesSmallerThanAnyCell) {
+  rc::Quadtree tree(kWorld);
+  const ProxyId speck = tree.createProxy(fixed(boxAt({3, 4}, {1e-39f, 1e-39f})));
+  const ProxyId point = tree.createProxy(fixed(boxAt({-3, 4}, {0, 0})));
+  const ProxyId mover = tree.createProxy(moving(boxAt({3, 4}, {0.5f, 0.5f})));
+  const ProxyId other = tree.createProxy(moving(boxAt({-3, 4}, {0.5f, 0.5f})));
+  tree.validate();
+  std::vector<rc::ProxyPair> pairs;
+  tree.findPairs(pairs);
+  ASSERT_EQ(pairs.size(), 2u);
+  auto has = [&](ProxyId a, ProxyId b) {
+    return std::any_of(pairs.begin(), pairs.end(), [&](const rc::ProxyPair& p) {
+      return (p.a == a && p.b == b) || (p.a == b && p.b == a);
+    });
+  };
+  EXPECT_TRUE(has(speck, mover));
+  EXPECT_TRUE(has(point, other));
+}
+
 TEST(Broadphase, FatAABBsSpareTheTree) {
   rc::Quadtree tree(kWorld);
   ProxyId id = tree.createProxy(moving(boxAt({0, 0}, {0.5f, 0.5f})));

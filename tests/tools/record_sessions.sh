@@ -4,6 +4,9 @@
 #
 #   tests/tools/record_sessions.sh [RICOCHET]     (default build/release/game/ricochet)
 #
+# Also the recording fuzzer's two seeds (tests/fuzz/corpus/recording: the arena, one player and
+# one bot, as its scratch match is), which a new kSimulationVersion makes unreadable too.
+#
 # Each is a fixed match: level, bots, players, seed and length are below, so recording again
 # with the same build gives the same bytes. Bump kSimulationVersion (game/session/recording.h)
 # in the same change when the old recordings can no longer replay.
@@ -25,4 +28,14 @@ for s in "${sessions[@]}"; do
   hash=$("$ricochet" replay "$out/$name.rec" --verify | sed -n 's/.* hash \([0-9a-f]*\) verdict ok .*/\1/p')
   [ -n "$hash" ] || { echo "record_sessions: $name.rec does not verify" >&2; exit 1; }
   echo "\"$name $hash\""
+done
+seeds=tests/fuzz/corpus/recording
+"$ricochet" play assets/levels/arena.tmj --bots 1 --seed 5 --ticks 240 --keyframe-every 60 \
+  --record "$seeds/arena_1bot.rec" > /dev/null
+# A scripted player who walks, turns, fires, throws and reloads.
+printf '%s\n' "0 0 1 0 0 - 0" "30 0 0 1 90 f 0" "60 0 -1 0 180 ft 0" "90 0 0 -1 270 r 1" \
+  "120 0 0.5 0.5 45 f 1" | "$ricochet" play assets/levels/arena.tmj --bots 1 --seed 9 \
+  --ticks 150 --keyframe-every 50 --input - --record "$seeds/arena_scripted.rec" > /dev/null
+for f in "$seeds"/*.rec; do
+  "$ricochet" replay "$f" --verify > /dev/null || { echo "record_sessions: $f does not verify" >&2; exit 1; }
 done

@@ -250,6 +250,23 @@ void World::addForceField(ForceField field) {
 const Quadtree& World::broadphase() const {
   return s_->broadphase_;
 }
+void World::setStepping(int substeps, Integrator integrator) {
+  if (substeps < 1 || substeps > 64)
+    failDefinition("world", "substeps", "is " + std::to_string(substeps) + " (must be 1 to 64)");
+  if (std::find(std::begin(kIntegrators), std::end(kIntegrators), integrator) ==
+      std::end(kIntegrators))
+    failDefinition("world", "integrator", "is not one of the four");
+  WorldState& s = *s_;
+  const float scale = static_cast<float>(s.def_.substeps) / static_cast<float>(substeps);
+  for (WorldState::Contact& c : s.contacts_)
+    for (int k = 0; k < 2; ++k) {
+      c.normalImpulse[k] *= scale;
+      c.tangentImpulse[k] *= scale;
+    }
+  s.def_.substeps = substeps;
+  s.def_.integrator = integrator;
+}
+
 const WorldDef& World::def() const {
   return s_->def_;
 }

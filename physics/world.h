@@ -378,6 +378,12 @@ class World {
   std::vector<ContactPointView> contactPoints() const;  // of touching contacts
   const Quadtree& broadphase() const;
   const WorldDef& def() const;
+  // Changes how the next steps are divided and integrated: a quality setting, or a study of the
+  // error a setting adds from a state another reached (restore() takes only a snapshot of the
+  // same definition: restore, then change). The contacts' carried impulses, which are per
+  // substep, are scaled to the new substep so that a warm-started stack still holds. Throws
+  // InvalidDefinition for substeps outside 1 to 64 or an integrator that is not one.
+  void setStepping(int substeps, Integrator integrator);
   const Profile& profile() const;
   double time() const;
 

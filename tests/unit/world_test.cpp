@@ -191,3 +191,43 @@ TEST(World, BadDefinitionsAreRejectedWithTheField) {
 }
 
 }  // namespace world_test
+
+// setStepping: a stack of 10 settled at 4 substeps, switched to 32, 8 with RK4 or 2 with
+// Verlet, keeps its height: the carried impulses are scaled to the new substep, so the first
+// substeps after the switch neither let the stack sink nor throw it up. Measured, the top box
+// moves by 0 / 0.52 / 2.35 mm over the next second (at 2 substeps the resting penetration is
+// deeper: the stack settles lower); with the impulses unscaled, 2.2 / 2.2 / 13.6 mm.
+TEST(World, SteppingChangedMidRunKeepsAStackStanding) {
+  struct Case {
+    int substeps;
+    rc::Integrator integrator;
+    float bound;
+  };
+  for (const auto& [substeps, integrator, bound] :
+       {Case{32, rc::Integrator::semiImplicitEuler, 5e-4f}, Case{8, rc::Integrator::rk4, 1e-3f},
+        Case{2, rc::Integrator::velocityVerlet, 5e-3f}}) {
+    rc::WorldDef def;
+    def.enableSleep = false;  // asleep, it would not move at all
+    rc::World w(def);
+    rc::testing::ground(w);
+    std::vector<rc::BodyId> boxes;
+    for (int k = 0; k < 10; ++k)
+      boxes.push_back(rc::testing::boxAt(w, {0, 0.5f + static_cast<float>(k)}));
+    rc::testing::stepN(w, 120);
+    const float settled = w.position(boxes.back()).y;
+    w.setStepping(substeps, integrator);
+    EXPECT_EQ(w.def().substeps, substeps);
+    EXPECT_EQ(w.def().integrator, integrator);
+    float worst = 0;
+    for (int k = 0; k < 60; ++k) {
+      w.step(rc::testing::kStep);
+      worst = std::max(worst, std::abs(w.position(boxes.back()).y - settled));
+    }
+    std::printf("%d substeps: top box moved up to %.3g m after the switch\n", substeps, worst);
+    EXPECT_LT(worst, bound) << substeps;
+  }
+  rc::World w;
+  EXPECT_THROW(w.setStepping(0, rc::Integrator::rk4), rc::InvalidDefinition);
+  EXPECT_THROW(w.setStepping(65, rc::Integrator::rk4), rc::InvalidDefinition);
+  EXPECT_THROW(w.setStepping(4, static_cast<rc::Integrator>(9)), rc::InvalidDefinition);
+}

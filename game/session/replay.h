@@ -28,6 +28,8 @@ class ReplaySetup {
   const std::string& levelPath() const { return levelPath_; }
   // The level as read (Level::files: the map and its tilesets, which no output may overwrite).
   const Level& level() const { return level_; }
+  // The recorded match's configuration (for making matches that differ from it on purpose).
+  const MatchConfig& config() const { return config_; }
 
  private:
   std::string levelPath_;

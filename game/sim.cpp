@@ -149,6 +149,7 @@ int runSim(std::span<const std::string_view> args) {
       scene.world.integrator = *m;
     }
     if (lanes != 0) scene.world.maxSolverLanes = static_cast<int>(lanes);
+    scene.world.enableProfile = profile;
     std::vector<std::size_t> traced;
     std::string error;
     if (!trace.empty() && !resolveTrace(trace, scene, traced, error)) return usageError(error);

@@ -15,9 +15,28 @@ namespace rc {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double millisecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
+
+// The phases' clock (WorldDef::enableProfile): each lap() is the time since the last one, in
+// milliseconds; off, nothing is read.
+class PhaseClock {
+ public:
+  explicit PhaseClock(bool on) : on_(on) {
+    if (on_) start_ = last_ = Clock::now();
+  }
+  void lap(double& into) {
+    if (!on_) return;
+    const auto now = Clock::now();
+    into = std::chrono::duration<double, std::milli>(now - last_).count();
+    last_ = now;
+  }
+  void total(double& into) const {
+    if (on_) into = std::chrono::duration<double, std::milli>(Clock::now() - start_).count();
+  }
+
+ private:
+  bool on_;
+  Clock::time_point start_, last_;
+};
 
 }  // namespace
 
@@ -74,8 +93,7 @@ void World::step(float dt) {
     throw std::invalid_argument("world: step dt must be finite and > 0, got " + formatNumber(dt));
   WorldState& s = *s_;
   Profile& profile = s.profile_;
-  const auto start = Clock::now();
-  auto t = start;
+  PhaseClock clock(s.def_.enableProfile);
   s.beginEvents();
   s.stepping_ = true;
   // (Reset however the step ends: a force field may throw.)
@@ -99,31 +117,25 @@ void World::step(float dt) {
   s.pendingRefit_.clear();
 
   s.updatePairs();
-  profile.updatePairs = millisecondsSince(t);
-  t = Clock::now();
+  clock.lap(profile.updatePairs);
   s.narrowphase(dt);
-  profile.narrowphase = millisecondsSince(t);
-  t = Clock::now();
+  clock.lap(profile.narrowphase);
   s.solve(dt);
-  profile.solve = millisecondsSince(t);
-  t = Clock::now();
+  clock.lap(profile.solve);
   if (s.def_.continuous) s.continuous();
   // What the contacts made of the bodies: one pass, and nothing more unless one is unusable.
   if (s.awakeCount_ > 0) s.quarantineUnusable(QuarantineCause::contact, true);
-  profile.continuous = millisecondsSince(t);
-  t = Clock::now();
+  clock.lap(profile.continuous);
   s.refit(dt);
-  profile.refit = millisecondsSince(t);
-  t = Clock::now();
+  clock.lap(profile.refit);
   s.updateSensors();
-  profile.sensors = millisecondsSince(t);
-  t = Clock::now();
+  clock.lap(profile.sensors);
   s.updateSleep(dt);
-  profile.sleep = millisecondsSince(t);
+  clock.lap(profile.sleep);
   s.stepping_ = false;
   s.time_ += dt;
   s.endStep();
-  profile.total = millisecondsSince(start);
+  clock.total(profile.total);
   if (s.staleFieldId_) {
     const BodyId stale = *s.staleFieldId_;
     s.staleFieldId_.reset();

@@ -69,8 +69,31 @@ void WorldState::destroyContact(std::size_t index, bool destroyed) {
     contacts_[index] = contacts_.back();
     contactIndex_[pairKey(contacts_[index].shapeA, contacts_[index].shapeB)] =
         static_cast<std::int32_t>(index);
+    if (index < contactAsleep_.size())
+      contactAsleep_[index] =
+          contacts_.size() <= contactAsleep_.size() ? contactAsleep_[contacts_.size() - 1] : 0;
   }
   contacts_.pop_back();
+  if (contactAsleep_.size() > contacts_.size()) contactAsleep_.resize(contacts_.size());
+}
+
+// Marks the contacts with nothing awake on either side, when the awake set changed since they
+// were last marked; otherwise only the contacts made since are added, unmarked.
+void WorldState::markSleepingContacts() {
+  if (contactSleepEpoch_ == awakeEpoch_) {
+    contactAsleep_.resize(contacts_.size(), 0);
+    return;
+  }
+  contactAsleep_.resize(contacts_.size());
+  for (std::size_t i = 0; i < contacts_.size(); ++i) {
+    const Contact& c = contacts_[i];
+    const Body& a =
+        bodies_[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(c.shapeA)].body)];
+    const Body& b =
+        bodies_[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(c.shapeB)].body)];
+    contactAsleep_[i] = !awake(a) && !awake(b) ? 1 : 0;
+  }
+  contactSleepEpoch_ = awakeEpoch_;
 }
 
 // The solver keeps a speculative point's gap from closing along the normal the manifold had at
@@ -171,6 +194,7 @@ void WorldState::narrowphase(float dt) {
   // Nothing awake: every contact is as it was when its bodies fell asleep (the loop below
   // would skip each one).
   if (awakeCount_ == 0) return;
+  markSleepingContacts();
   // How far a shape's surface can move towards anything this step: its body's speed plus its
   // turning speed times its reach from the centre of mass.
   auto reachSpeed = [&](const ShapeRecord& r) {
@@ -182,6 +206,7 @@ void WorldState::narrowphase(float dt) {
   };
   // Back to front: a destroyed contact is replaced by the last one, already updated.
   for (std::size_t i = contacts_.size(); i-- > 0;) {
+    if (knownAsleep(i)) continue;
     Contact& c = contacts_[i];
     const ShapeRecord& ra = shapes_[static_cast<std::size_t>(c.shapeA)];
     const ShapeRecord& rb = shapes_[static_cast<std::size_t>(c.shapeB)];

@@ -85,7 +85,9 @@ void WorldState::updateSleep(float dt) {
   // stays awake: its root gets a still time of 0 below.
   std::vector<float>& still = freeV_;  // reused scratch: the island's shortest still time
   still.assign(n, std::numeric_limits<float>::max());
-  for (const Contact& c : contacts_) {
+  for (std::size_t i = 0; i < contacts_.size(); ++i) {
+    if (knownAsleep(i)) continue;
+    const Contact& c = contacts_[i];
     if (!c.touching) continue;
     const Body& a =
         bodies_[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(c.shapeA)].body)];

@@ -99,6 +99,7 @@ void WorldState::prepareContacts() {
   // shared: a body with two contacts overlapping past the slop.
   bool shared = false;
   for (std::size_t ci = 0; ci < contacts_.size(); ++ci) {
+    if (knownAsleep(ci)) continue;
     const Contact& c = contacts_[ci];
     if (!c.touching) continue;
     const std::int32_t bodyA = shapes_[static_cast<std::size_t>(c.shapeA)].body;

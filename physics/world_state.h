@@ -281,6 +281,19 @@ class WorldState {
   std::vector<ShapeRecord> shapes_;
   std::vector<std::int32_t> freeShapes_;
   std::vector<Contact> contacts_;
+  // Contacts known to have nothing awake on either side (both bodies asleep, or asleep and
+  // static), by index into contacts_, while the awake set is as it was when they were marked
+  // (awakeEpoch_, bumped by every slot swap, equal to contactSleepEpoch_): the narrowphase, the
+  // constraints' preparation and the islands skip them reading one byte, not two shapes and two
+  // bodies (a far sleeping pile's 10,600 contacts cost 3 ns each in each of those loops).
+  // Conservative: 0, or an index past the end, says nothing. Not state: never saved.
+  std::vector<std::uint8_t> contactAsleep_;
+  std::uint64_t awakeEpoch_ = 1, contactSleepEpoch_ = 0;
+  bool knownAsleep(std::size_t contact) const {
+    return contactSleepEpoch_ == awakeEpoch_ && contact < contactAsleep_.size() &&
+           contactAsleep_[contact] != 0;
+  }
+  void markSleepingContacts();
   std::vector<ForceField> fields_;
   // Per simulated (kinematic and dynamic) body, three degrees of freedom: x, y and angle of the
   // centre of mass, and their velocities. Bodies hold their slot. Positions are doubles: 10 km

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "physics/constants.h"
@@ -329,6 +330,8 @@ void WorldState::prepareBodies(float dt) {
   startCenter_.resize(2 * slots);
   startAngle_.resize(slots);
   slotRound_.resize(slots);
+  slotHalfMinExtent_.resize(slots);
+  slotMaxExtent_.resize(slots);
   baseAccel_.resize(3 * slots);
   damped_.clear();
   solverBodies_.assign(slots + 1, SolverBody{});  // the last: the null body
@@ -338,6 +341,10 @@ void WorldState::prepareBodies(float dt) {
     startCenter_[2 * s + 1] = q_[3 * s + 1];
     startAngle_[s] = q_[3 * s + 2];
     slotRound_[s] = b.round;
+    slotHalfMinExtent_[s] = b.type == BodyType::dynamicBody && !b.shapes.empty()
+                                ? 0.5f * b.minExtent
+                                : std::numeric_limits<float>::infinity();
+    slotMaxExtent_[s] = b.maxExtent;
     if (b.linearDamping > 0.0f || b.angularDamping > 0.0f)
       damped_.push_back(static_cast<std::int32_t>(s));
     // Gravity, force and torque do not change during the step: gathered once here, copied out
@@ -351,6 +358,7 @@ void WorldState::prepareBodies(float dt) {
       a[0] = a[1] = a[2] = 0.0f;
     }
   }
+  slotExtentsEpoch_ = awakeEpoch_;
   // Bodies begin the step no faster than quarantineSpeed (checked after every step and after
   // the game's changes); without force fields, free motion can make one unusable only if some
   // acceleration could add that much in the step. Otherwise the substeps skip the check.

@@ -366,6 +366,12 @@ class WorldState {
   std::vector<double> startAngle_;
   // Body::round per slot, read each substep (a byte each, where the bodies are a cache miss).
   std::vector<std::uint8_t> slotRound_;
+  // Per slot, for the continuous pass's first look: half the body's smallest extent (infinite
+  // for a body it never sweeps) and its largest, from prepareBodies while the awake set is as
+  // it was then (slotExtentsEpoch_): a body that moved less than that cannot be fast, and is
+  // passed over without reading its record (a cache miss per awake body, 5% of an arena's step).
+  std::vector<float> slotHalfMinExtent_, slotMaxExtent_;
+  std::uint64_t slotExtentsEpoch_ = 0;
   std::vector<float> baseAccel_;      // per awake slot: gravity, force and torque accelerations
   std::vector<std::int32_t> damped_;  // awake slots with linear or angular damping
   // Angles whose sine and cosine are wanted, taken in one batch (see rc::sincos), and the

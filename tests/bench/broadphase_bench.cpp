@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/broadphase_arena.h"
 #include "bench/ratio_table.h"
 #include "physics/broadphase.h"
 #include "physics/random.h"
@@ -39,20 +40,12 @@ namespace {
 using rc::AABB;
 using rc::Vec2;
 
-constexpr float kRadius = 0.5f;
-constexpr float kSpeed = 5.0f;
-constexpr float kDt = 1.0f / 60.0f;
+using rc::bench::circleBox;
+using rc::bench::kDt;
+using rc::bench::kRadius;
+using rc::bench::kSpeed;
+using rc::bench::toB2;
 constexpr int kSteps = 60;
-
-AABB circleBox(Vec2 c) {
-  return {{c.x - kRadius, c.y - kRadius}, {c.x + kRadius, c.y + kRadius}};
-}
-b2AABB toB2(const AABB& box) {
-  b2AABB b;
-  b.lowerBound.Set(box.lower.x, box.lower.y);
-  b.upperBound.Set(box.upper.x, box.upper.y);
-  return b;
-}
 
 // The arena and one simulated second of motion, precomputed so that both engines see exactly
 // the same positions and neither pays for the integration.

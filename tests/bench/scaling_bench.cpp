@@ -37,6 +37,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "bench/broadphase_arena.h"
 #include "bench/cpu_time.h"
 #include "bench/world_scenes.h"
 #include "physics/broadphase.h"
@@ -102,18 +103,12 @@ double worldRound(const world_scenes::SceneDesc& scene, double* bytes, rc::Profi
 
 // ------------------------------------------------------------------------------ broadphase
 
-constexpr float kRadius = 0.5f, kSpeed = 5.0f, kDt = 1.0f / 60.0f;
+using rc::bench::circleBox;
+using rc::bench::kDt;
+using rc::bench::kRadius;
+using rc::bench::kSpeed;
+using rc::bench::toB2;
 constexpr int kPairWarmup = 10;  // more than a proxy's 6-9 steps between re-insertions
-
-AABB circleBox(Vec2 c) {
-  return {{c.x - kRadius, c.y - kRadius}, {c.x + kRadius, c.y + kRadius}};
-}
-b2AABB toB2(const AABB& box) {
-  b2AABB b;
-  b.lowerBound.Set(box.lower.x, box.lower.y);
-  b.upperBound.Set(box.upper.x, box.upper.y);
-  return b;
-}
 
 // Circles bouncing in a square of side sqrt(8 n): the same seed gives both engines the same
 // positions step after step. Each proxy is created with its box stretched along its motion by

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <initializer_list>
 #include <limits>
 #include <optional>
 #include <string>
@@ -181,6 +182,44 @@ TEST(World, BulletDeflectedIntoAWallStaysOut) {
   EXPECT_LT(deepest, rc::kLinearSlop) << worst;
 }
 
+// The struck-into-a-wall tests' world: no gravity, no sleeping, a static wall 1 cm thick whose
+// lower face is y = 10, every shape frictionless and perfectly elastic (sd).
+struct WallRig {
+  rc::World w{[] {
+    rc::WorldDef def;
+    def.gravity = {0, 0};
+    def.enableSleep = false;
+    return def;
+  }()};
+  rc::ShapeDef sd = [] {
+    rc::ShapeDef d;
+    d.friction = 0.0f;
+    d.restitution = 1.0f;
+    return d;
+  }();
+  WallRig() { w.createShape(w.createBody({}), rc::makeBox(1000, 0.005f, {0, 10.005f}), sd); }
+  // A 5 cm ball fired from `from` with `velocity`.
+  BodyId strike(Vec2 from, Vec2 velocity, bool bullet = false) {
+    rc::BodyDef def = dynamicAt(from);
+    def.linearVelocity = velocity;
+    def.bullet = bullet;
+    const BodyId striker = w.createBody(def);
+    w.createShape(striker, rc::makeCircle({}, 0.05f), sd);
+    return striker;
+  }
+  // Ten steps; how far the deepest of the bodies' centres got past the wall's face (negative:
+  // none reached it).
+  float deepestPast(std::initializer_list<BodyId> bodies) {
+    float depth = -1.0f;
+    for (int i = 0; i < 10; ++i) {
+      w.step(1.0f / 60.0f);
+      for (const BodyId b : bodies)
+        depth = std::max(depth, w.worldCenter(b).y - 10.0f);
+    }
+    return depth;
+  }
+};
+
 // A 5 cm ball touching a 1 cm wall (closer than the sweep's target separation, so its time of
 // impact reads "overlapped", not a hit at fraction 0), struck up into the wall by a ball at
 // 800 m/s from 0.3 to 1.5 rad: the solve pushed it into the wall and the sweep left it there,
@@ -190,30 +229,17 @@ TEST(World, BallTouchingAWallStruckIntoItStaysOut) {
   int through = 0;
   float deepest = -1.0f;
   for (int shot = 0; shot < 200; ++shot) {
-    rc::WorldDef def;
-    def.gravity = {0, 0};
-    def.enableSleep = false;
-    rc::World w(def);
-    rc::ShapeDef sd;
-    sd.friction = 0.0f;
-    sd.restitution = 1.0f;
-    w.createShape(w.createBody({}), rc::makeBox(1000, 0.005f, {0, 10.005f}), sd);  // face y = 10
+    WallRig rig;
+    rc::World& w = rig.w;
+    const rc::ShapeDef& sd = rig.sd;
     // 0 to 4 mm from the wall: within the slop.
     const BodyId ball =
         w.createBody(dynamicAt({0, 10.0f - 0.05f - 0.001f * static_cast<float>(shot % 5)}));
     w.createShape(ball, rc::makeCircle({}, 0.05f), sd);
     const float angle = 0.3f + 0.006f * static_cast<float>(shot);
     const Vec2 dir{std::cos(angle), std::sin(angle)};
-    rc::BodyDef strikerDef = dynamicAt(Vec2{0, 9.95f} - 0.5f * dir);
-    strikerDef.linearVelocity = 800.0f * dir;
-    strikerDef.bullet = shot % 2 == 1;
-    const BodyId striker = w.createBody(strikerDef);
-    w.createShape(striker, rc::makeCircle({}, 0.05f), sd);
-    float depth = -1.0f;  // of the deeper centre past the wall's face
-    for (int i = 0; i < 10; ++i) {
-      w.step(1.0f / 60.0f);
-      depth = std::max({depth, w.worldCenter(ball).y - 10.0f, w.worldCenter(striker).y - 10.0f});
-    }
+    const BodyId striker = rig.strike(Vec2{0, 9.95f} - 0.5f * dir, 800.0f * dir, shot % 2 == 1);
+    const float depth = rig.deepestPast({ball, striker});
     through += depth > 0.0f;
     deepest = std::max(deepest, depth);
   }
@@ -230,28 +256,16 @@ TEST(World, BoxWithACornerInAWallStruckIntoItStaysOut) {
   int through = 0;
   float deepest = -1.0f;
   for (int shot = 0; shot < 200; ++shot) {
-    rc::WorldDef def;
-    def.gravity = {0, 0};
-    def.enableSleep = false;
-    rc::World w(def);
-    rc::ShapeDef sd;
-    sd.friction = 0.0f;
-    sd.restitution = 1.0f;
-    w.createShape(w.createBody({}), rc::makeBox(1000, 0.005f, {0, 10.005f}), sd);  // face y = 10
+    WallRig rig;
+    rc::World& w = rig.w;
+    const rc::ShapeDef& sd = rig.sd;
     const BodyId box =
         w.createBody(dynamicAt({0, 9.94f}, 0.2f + 0.006f * static_cast<float>(shot)));
     w.createShape(box, rc::makeBox(0.05f, 0.05f), sd);
     const float angle = 0.3f + 0.012f * static_cast<float>(shot % 100);
     const Vec2 dir{std::cos(angle), std::sin(angle)};
-    rc::BodyDef strikerDef = dynamicAt(Vec2{0, 9.94f} - 0.5f * dir);
-    strikerDef.linearVelocity = 800.0f * dir;
-    const BodyId striker = w.createBody(strikerDef);
-    w.createShape(striker, rc::makeCircle({}, 0.05f), sd);
-    float depth = -1.0f;
-    for (int i = 0; i < 10; ++i) {
-      w.step(1.0f / 60.0f);
-      depth = std::max(depth, w.worldCenter(box).y - 10.0f);
-    }
+    rig.strike(Vec2{0, 9.94f} - 0.5f * dir, 800.0f * dir);
+    const float depth = rig.deepestPast({box});
     through += depth > 0.0f;
     deepest = std::max(deepest, depth);
   }
@@ -268,29 +282,17 @@ TEST(World, SpinningBodyStruckIntoAWallStops) {
   int through = 0;
   float deepest = -1.0f;
   for (int shot = 0; shot < 200; ++shot) {
-    rc::WorldDef def;
-    def.gravity = {0, 0};
-    def.enableSleep = false;
-    rc::World w(def);
-    rc::ShapeDef sd;
-    sd.friction = 0.0f;
-    sd.restitution = 1.0f;
-    w.createShape(w.createBody({}), rc::makeBox(1000, 0.005f, {0, 10.005f}), sd);  // face y = 10
+    WallRig rig;
+    rc::World& w = rig.w;
+    const rc::ShapeDef& sd = rig.sd;
     rc::BodyDef spinnerDef = dynamicAt({0, 9}, 0.1f * static_cast<float>(shot));
     spinnerDef.angularVelocity = 5000.0f;
     const BodyId spinner = w.createBody(spinnerDef);
     w.createShape(spinner, rc::makeTriangle({-0.05f, -0.04f}, {0.05f, -0.04f}, {0, 0.06f}), sd);
     const float angle = 1.0f + 0.005f * static_cast<float>(shot);
     const Vec2 dir{std::cos(angle), std::sin(angle)};
-    rc::BodyDef strikerDef = dynamicAt(Vec2{0, 9} - 0.4f * dir);
-    strikerDef.linearVelocity = 300.0f * dir;
-    const BodyId striker = w.createBody(strikerDef);
-    w.createShape(striker, rc::makeCircle({}, 0.05f), sd);
-    float depth = -1.0f;
-    for (int i = 0; i < 10; ++i) {
-      w.step(1.0f / 60.0f);
-      depth = std::max(depth, w.worldCenter(spinner).y - 10.0f);
-    }
+    rig.strike(Vec2{0, 9} - 0.4f * dir, 300.0f * dir);
+    const float depth = rig.deepestPast({spinner});
     through += depth > 0.0f;
     deepest = std::max(deepest, depth);
   }

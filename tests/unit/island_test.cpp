@@ -89,4 +89,36 @@ TEST(World, ForcesAndAskingQueriesWakeSleepers) {
   EXPECT_TRUE(w.isAwake(row[3]));
 }
 
+// Bodies created inside each other do not fall asleep there. A crowd born at one point is
+// pushed apart slower than the sleep tolerance when each body is in hundreds of overlaps; here
+// the tolerance is raised to 2 m/s so that thirty circles are "still" from the first step, and
+// they must still be awake while any contact is deeper than a quarter of a circle's diameter
+// (island.cpp's bound), and asleep once apart. Before the bound they slept at step 30 fully on
+// top of each other (0.5 m deep).
+TEST(World, BodiesInsideEachOtherStayAwakeUntilPushedOut) {
+  rc::WorldDef def;
+  def.gravity = {0, 0};
+  def.linearSleepTolerance = 2.0f;
+  def.angularSleepTolerance = 10.0f;
+  rc::World w(def);
+  for (int i = 0; i < 30; ++i)
+    w.createShape(w.createBody(dynamicAt({0, 0})), rc::makeCircle({}, 0.25f));
+  auto deepest = [&] {
+    float d = 0.0f;
+    for (const rc::World::ContactPointView& p : w.contactPoints())
+      d = std::max(d, -p.separation);
+    return d;
+  };
+  int asleepAt = -1;
+  for (int k = 1; k <= 600 && asleepAt < 0; ++k) {
+    w.step(1.0f / 60.0f);
+    if (w.awakeBodyCount() == 0) {
+      asleepAt = k;  // the contacts are as the step's sleep test saw them
+      EXPECT_LE(deepest(), 0.25f * 0.5f) << "asleep at step " << k;
+    }
+  }
+  EXPECT_GT(asleepAt, 30);  // not at the first chance (timeToSleep: 0.5 s)
+  EXPECT_GT(asleepAt, 0) << "never slept";
+}
+
 }  // namespace island_test

@@ -200,11 +200,11 @@ rc::BodyType bodyType(const json& j, const Where& at) {
 void parseSettings(const json& j, SceneDesc& scene, const std::string& file) {
   const Where at{file, "settings"};
   if (!j.is_object()) at.fail("", "must be an object");
-  onlyKnown(
-      j,
-      {"gravity", "integrator", "substeps", "dt", "restitutionThreshold", "hitEventThreshold",
-       "contactHertz", "contactDampingRatio", "maxPushoutSpeed", "continuous", "sleep", "bounds"},
-      at, "");
+  onlyKnown(j,
+            {"gravity", "integrator", "substeps", "dt", "restitutionThreshold", "hitEventThreshold",
+             "contactHertz", "contactDampingRatio", "maxPushoutSpeed", "contactRecycleDistance",
+             "continuous", "sleep", "bounds"},
+            at, "");
   rc::WorldDef& w = scene.world;
   w.gravity = vec2(j, "gravity", w.gravity, at, "");
   if (const json* v = find(j, "integrator")) {
@@ -227,6 +227,7 @@ void parseSettings(const json& j, SceneDesc& scene, const std::string& file) {
   w.contactHertz = number(j, "contactHertz", w.contactHertz, at, "");
   w.contactDampingRatio = number(j, "contactDampingRatio", w.contactDampingRatio, at, "");
   w.maxPushoutSpeed = number(j, "maxPushoutSpeed", w.maxPushoutSpeed, at, "");
+  w.contactRecycleDistance = number(j, "contactRecycleDistance", w.contactRecycleDistance, at, "");
   w.continuous = boolean(j, "continuous", w.continuous, at, "");
   w.enableSleep = boolean(j, "sleep", w.enableSleep, at, "");
   if (const json* b = find(j, "bounds")) {

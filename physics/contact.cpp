@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "physics/collide.h"
 #include "physics/world.h"
@@ -190,9 +191,54 @@ void WorldState::foresee(Manifold& m, const ShapeRecord& ra, const Transform& xf
   }
 }
 
+// Contact recycling, the idea of Box2D v3's (Erin Catto's): while two touching bodies have
+// barely moved relative to each other since their manifold was made, the manifold is still the
+// answer the shapes would give, so it is carried along instead of made again: each point stays
+// on both bodies (its anchors turned with them) and its separation is the one it was made with
+// plus how far the two material points have since closed along the normal, which is what the
+// solver does between substeps. Bounded by the tolerance: the points' relative motion, plus the
+// smaller body's reach times the relative turn (a corner that could come into the manifold),
+// and each body turned by no more than kTurn (the normal, fixed, is off by at most that).
+// Not for pairs moving fast enough to need foresight (margin), nor for manifolds foreseen or
+// moved off a coincidence (their anchors are not one point on each body).
+bool WorldState::recycle(Contact& c, const Body& a, const Body& b, Vec2 offset,
+                         float margin) const {
+  const float tolerance = def_.contactRecycleDistance;
+  constexpr float kTurn = 0.02f;  // rad: cos 0.9998
+  if (!c.recyclable || margin > kSpeculativeDistance + tolerance) return false;
+  const Rot dqA = invMul(c.madeQA, a.xf.q), dqB = invMul(c.madeQB, b.xf.q);
+  if (std::fabs(dqA.s) > kTurn || std::fabs(dqB.s) > kTurn || dqA.c < 0.0f || dqB.c < 0.0f)
+    return false;
+  const float reachA =
+      a.type == BodyType::staticBody ? std::numeric_limits<float>::max() : a.maxExtent;
+  const float reachB =
+      b.type == BodyType::staticBody ? std::numeric_limits<float>::max() : b.maxExtent;
+  const float turned = std::min(reachA, reachB) * std::fabs(invMul(dqA, dqB).s);
+  Manifold& m = c.manifold;
+  float separation[2];
+  Vec2 carried[2];  // B's carried point from A's
+  for (int k = 0; k < m.pointCount; ++k) {
+    const ManifoldPoint& mp = m.points[k];
+    const Vec2 d = offset + rotate(dqB, mp.anchorB) - rotate(dqA, mp.anchorA);
+    carried[k] = d;
+    const float reach = tolerance - turned;
+    if (!(lengthSquared(d) <= reach * reach) || reach < 0.0f) return false;
+    separation[k] = c.madeSeparation[k] + dot(d, m.normal);
+  }
+  // The point reported (events, contactPoints): midway between the two carried points.
+  for (int k = 0; k < m.pointCount; ++k) {
+    ManifoldPoint& mp = m.points[k];
+    mp.separation = separation[k];
+    mp.point = a.xf.p + rotate(dqA, mp.anchorA) + 0.5f * carried[k];
+  }
+  c.recycled = true;
+  return true;
+}
+
 void WorldState::narrowphase(float dt) {
   // Nothing awake: every contact is as it was when its bodies fell asleep (the loop below
   // would skip each one).
+  profile_.recycled = profile_.made = 0;
   if (awakeCount_ == 0) return;
   markSleepingContacts();
   // How far a shape's surface can move towards anything this step: its body's speed plus its
@@ -238,18 +284,33 @@ void WorldState::narrowphase(float dt) {
     const float margin = def_.continuous
                              ? kSpeculativeDistance + dt * (reachSpeed(ra) + reachSpeed(rb))
                              : kSpeculativeDistance;
+    if (c.touching && def_.contactRecycleDistance > 0.0f &&
+        recycle(c, bodyA, bodyB, xfB.p, margin)) {
+      ++profile_.recycled;
+      if (bodyA.island >= 0) wakeBody(bodyA);
+      if (bodyB.island >= 0) wakeBody(bodyB);
+      continue;
+    }
     // Constructed in place: the manifold function's result goes straight into the contact.
     // Assigned, it was built in a temporary and copied with wide loads of the narrow stores just
     // made (a store-forwarding stall, a sixth of this loop).
     // (Placement new, not std::construct_at, whose forwarding reference makes a temporary.)
     ::new (static_cast<void*>(&c.manifold)) Manifold(collide(ra.shape, xfA, rb.shape, xfB, margin));
+    c.recycled = false;
+    c.recyclable = true;
+    c.madeQA = bodyA.xf.q;
+    c.madeQB = bodyB.xf.q;
+    for (int k = 0; k < c.manifold.pointCount; ++k)
+      c.madeSeparation[k] = c.manifold.points[k].separation;
     // Only apart beyond the usual margin (every point) is there anything to foresee; resting
     // and sliding contacts, nearly all of a pile's, stop here (the call was 2% of a pyramid).
     const Manifold& m = c.manifold;
     if (margin > kSpeculativeDistance && m.pointCount > 0 &&
         m.points[0].separation > kSpeculativeDistance &&
-        (m.pointCount == 1 || m.points[1].separation > kSpeculativeDistance))
+        (m.pointCount == 1 || m.points[1].separation > kSpeculativeDistance)) {
       foresee(c.manifold, ra, xfA, rb, xfB, dt);
+      c.recyclable = false;
+    }
     // Shapes whose centres coincide give no direction to be pushed apart in: the geometry
     // picks the same one for every such pair (up for two circles, a fixed face for two
     // polygons), which lines a pile of them up along one line. Each shape is taken instead to
@@ -261,6 +322,7 @@ void WorldState::narrowphase(float dt) {
       const Vec2 offset = coincidenceOffset(c.shapeB) - coincidenceOffset(c.shapeA);
       ::new (static_cast<void*>(&c.manifold))
           Manifold(collide(ra.shape, xfA, rb.shape, {xfB.p + offset, xfB.q}, margin));
+      c.recyclable = false;
     }
     for (int k = 0; k < c.manifold.pointCount; ++k)
       c.manifold.points[k].point += bodyA.xf.p;
@@ -279,6 +341,7 @@ void WorldState::narrowphase(float dt) {
     }
     const bool was = c.touching;
     c.touching = c.manifold.pointCount > 0;
+    profile_.made += c.touching ? 1 : 0;
     // Touching something awake wakes a sleeping body's island.
     if (c.touching) {
       if (bodyA.island >= 0) wakeBody(bodyA);

@@ -20,7 +20,7 @@ namespace rc {
 namespace {
 
 constexpr std::uint32_t kMagic = 0x53574352;  // "RCWS"
-constexpr std::uint32_t kFormat = 1;
+constexpr std::uint32_t kFormat = 2;
 
 // The definition's fields that decide the simulation, by name (the solver's width does not:
 // either width gives the same bits).
@@ -35,6 +35,7 @@ void defFields(const WorldDef& d, Visit&& visit) {
   visit("contactHertz", d.contactHertz);
   visit("contactDampingRatio", d.contactDampingRatio);
   visit("maxPushoutSpeed", d.maxPushoutSpeed);
+  visit("contactRecycleDistance", d.contactRecycleDistance);
   visit("continuous", d.continuous ? 1.0f : 0.0f);
   visit("enableSleep", d.enableSleep ? 1.0f : 0.0f);
   visit("timeToSleep", d.timeToSleep);
@@ -264,7 +265,7 @@ void ioState(A& a, W& s) {
     a(r.userData);
   });
   indices(a, s.freeShapes_);
-  list(a, s.contacts_, 49, [&](auto& c) {
+  list(a, s.contacts_, 67, [&](auto& c) {
     a(c.shapeA);
     a(c.shapeB);
     a(c.manifold.normal);
@@ -279,7 +280,14 @@ void ioState(A& a, W& s) {
       a(p.anchorB);
       a(p.separation);
       a(p.id);
+      a(c.madeSeparation[k]);
     }
+    a(c.madeQA.c);
+    a(c.madeQA.s);
+    a(c.madeQB.c);
+    a(c.madeQB.s);
+    a(c.recyclable);
+    a(c.recycled);
     for (int k = 0; k < 2; ++k) {
       a(c.normalImpulse[k]);
       a(c.tangentImpulse[k]);
@@ -407,8 +415,10 @@ void decode(ByteReader& r, WorldState& s) {
     for (int k = 0; k < c.manifold.pointCount; ++k) {
       const ManifoldPoint& p = c.manifold.points[k];
       finite = finite && isFinite(p.point) && isFinite(p.anchorA) && isFinite(p.anchorB) &&
-               std::isfinite(p.separation);
+               std::isfinite(p.separation) && std::isfinite(c.madeSeparation[k]);
     }
+    finite = finite && std::isfinite(c.madeQA.c) && std::isfinite(c.madeQA.s) &&
+             std::isfinite(c.madeQB.c) && std::isfinite(c.madeQB.s);
     need(finite, "a contact is not finite");
   }
   // (A position floats cannot hold would overflow the step's boxes.)

@@ -172,11 +172,15 @@ void WorldState::prepareContacts() {
                                          v_[3 * static_cast<std::size_t>(cc.slotB) + 1]}
                                   : Vec2{};
     const float wB = cc.slotB >= 0 ? v_[3 * static_cast<std::size_t>(cc.slotB) + 2] : 0.0f;
+    // A recycled manifold's anchors are where its points were on each body when it was made:
+    // turned with the bodies since.
+    const Rot dqA = c.recycled ? invMul(c.madeQA, a.xf.q) : Rot{};
+    const Rot dqB = c.recycled ? invMul(c.madeQB, b.xf.q) : Rot{};
     for (int k = 0; k < cc.pointCount; ++k) {
       const ManifoldPoint& mp = c.manifold.points[k];
       ConstraintPoint& p = cc.points[k];
-      p.rA = mp.anchorA - offsetA;
-      p.rB = mp.anchorB - offsetB;
+      p.rA = (c.recycled ? rotate(dqA, mp.anchorA) : mp.anchorA) - offsetA;
+      p.rB = (c.recycled ? rotate(dqB, mp.anchorB) : mp.anchorB) - offsetB;
       p.baseSeparation = mp.separation;
       p.normalImpulse = c.normalImpulse[k];
       p.tangentImpulse = c.tangentImpulse[k];

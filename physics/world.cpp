@@ -76,6 +76,7 @@ World::World(const WorldDef& def) {
   requireNonNegative("world", "contactHertz", def.contactHertz);
   requireNonNegative("world", "contactDampingRatio", def.contactDampingRatio);
   requireNonNegative("world", "maxPushoutSpeed", def.maxPushoutSpeed);
+  requireNonNegative("world", "contactRecycleDistance", def.contactRecycleDistance);
   requireNonNegative("world", "quarantineSpeed", def.quarantineSpeed);
   if (def.maxSolverLanes != 4 && def.maxSolverLanes != 8)
     failDefinition("world", "maxSolverLanes",

@@ -101,6 +101,13 @@ class WorldState {
     float normalImpulse[2] = {0, 0}, tangentImpulse[2] = {0, 0};
     float friction = 0, restitution = 0;
     bool touching = false;
+    // Recycling (narrowphase): the bodies' rotations when the manifold was made and its points'
+    // separations then. `recyclable`: made by the plain manifold function (not foreseen nor
+    // moved off a coincidence), so its anchors are one point on each body; `recycled`: this
+    // step's manifold is that one carried along by the bodies.
+    Rot madeQA, madeQB;
+    float madeSeparation[2] = {0, 0};
+    bool recyclable = false, recycled = false;
   };
   // A sensor shape and a shape whose fat AABB overlaps it.
   struct SensorPair {
@@ -190,6 +197,7 @@ class WorldState {
   // ---- contacts (contact.cpp)
   void updatePairs();
   void narrowphase(float dt);
+  bool recycle(Contact& c, const Body& a, const Body& b, Vec2 offset, float margin) const;
   void foresee(Manifold& m, const ShapeRecord& ra, const Transform& xfA, const ShapeRecord& rb,
                const Transform& xfB, float dt) const;
   // destroyed: ended by a destroy, disable or filter change, not by the shapes parting.

@@ -129,7 +129,8 @@ TEST(Scene, ReadsEveryField) {
   const char* text = R"({
     "settings": {"gravity": [1, -9], "integrator": "rk4", "substeps": 6, "dt": 0.01,
                  "restitutionThreshold": 2, "contactHertz": 20, "sleep": false,
-                 "continuous": false, "bounds": {"lower": [-10, -10], "upper": [10, 30]}},
+                 "contactRecycleDistance": 0, "continuous": false,
+                 "bounds": {"lower": [-10, -10], "upper": [10, 30]}},
     "bodies": [
       {"name": "walls", "shapes": [
         {"type": "chain", "points": [[-5, 0], [0, -1], [5, 0]], "oneSided": true},
@@ -151,6 +152,7 @@ TEST(Scene, ReadsEveryField) {
   EXPECT_FLOAT_EQ(s.dt, 0.01f);
   EXPECT_FLOAT_EQ(s.world.restitutionThreshold, 2);
   EXPECT_FLOAT_EQ(s.world.contactHertz, 20);
+  EXPECT_EQ(s.world.contactRecycleDistance, 0.0f);
   EXPECT_FALSE(s.world.enableSleep);
   EXPECT_FALSE(s.world.continuous);
   EXPECT_EQ(s.world.bounds.upper, (rc::Vec2{10, 30}));

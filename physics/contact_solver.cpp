@@ -204,9 +204,11 @@ RC_INLINE void warmStartBatch(Batch<N>& c, SolverBody* bodies, const float* free
   const BodyLanes<N> A = gather<N, false>(bodies, c.a), B = gather<N, false>(bodies, c.b);
   Velocities<N> v{A.vx, A.vy, A.w, B.vx, B.vy, B.w};
   const F tx = c.ny, ty = -c.nx;
-  // The approach speed restitution reverses: the fastest normal velocity of the step's free
-  // motion until the solver first pushes the point, which includes what gravity added before
-  // the impact. Read from the substep's free velocities, before any warm start: the bodies
+  // The approach speed restitution reverses: the normal velocity of the free motion of the
+  // substep in which the solver first pushes the point, the speed at the impact (what gravity
+  // added before it included, and what it took away: the fastest of the step's substeps gave a
+  // body decelerating into a ceiling more speed back than it hit with, up to g dt). Read from
+  // the substep's free velocities, before any warm start: the bodies
   // here already carry the warm starts of earlier batches, a kick the solve takes back out
   // (a bullet resting on a floor and hit by another read the floor's carried impulse as 370
   // m/s of approach, where the free motion had 220, and the pair bounced apart with more
@@ -218,7 +220,7 @@ RC_INLINE void warmStartBatch(Batch<N>& c, SolverBody* bodies, const float* free
     const Velocities<N> fv{fA.vx, fA.vy, fA.w, fB.vx, fB.vy, fB.w};
     for (int k = 0; k < c.points; ++k) {
       PointLanes<N>& p = c.p[k];
-      const F vn = vmin(p.relativeVelocity, fv.along(c.nx, c.ny, p.rnA, p.rnB));
+      const F vn = fv.along(c.nx, c.ny, p.rnA, p.rnB);
       p.relativeVelocity = select(p.maxNormalImpulse > 0.0f, p.relativeVelocity, vn);
     }
   }

@@ -154,8 +154,12 @@ void WorldState::continuous() {
         // it started, as a hit at fraction 0 is below (a 5 cm ball sliding along a 1 cm wall,
         // struck by a body at 800 m/s, went through the wall). The normal is zero when the
         // cores overlap, and then this does not apply.
+        // (Deeper than the slop measured from where it started: within the target, up to a slop
+        // out, so a move in of more than two slops. One slop held a body pressed to a wall by a
+        // force, 6 mm off it, which closed the gap each step by 6.9 mm, legitimately, and was held
+        // there step after step while it fell along the wall at up to 280 m/s.)
         if (toi.state == ToiState::overlapped && !moving &&
-            dot(sweep.c2 - sweep.c1, toi.normal) > kLinearSlop) {
+            dot(sweep.c2 - sweep.c1, toi.normal) > 2.0f * kLinearSlop) {
           first = 0.0f;
           hitBody = -1;
           heldOff = toi.normal;
@@ -194,7 +198,8 @@ void WorldState::continuous() {
         // solved after the wall's pushed it in (a bullet at a wall, deflected into it by a
         // ball wedged against the same wall, went 13 cm in and out of the arena at 1000 m/s);
         // it then stays where it started, and the next step's contact stops it there.
-        if (toi.fraction == 0.0f && (moving || dot(sweep.c2 - sweep.c1, toi.normal) <= kLinearSlop))
+        if (toi.fraction == 0.0f &&
+            (moving || dot(sweep.c2 - sweep.c1, toi.normal) <= 2.0f * kLinearSlop))
           return true;
         // Two moving bodies already touching (a bullet that hit and rides along the body it
         // hit) stay to their contact; stopping them at the start of every step would freeze
@@ -231,10 +236,15 @@ void WorldState::continuous() {
       }
       placeAt(b, first);
       // Held where it started by a static shape the solve drove it into: what it had of velocity
-      // into that shape goes, as in an inelastic contact. Kept, it made the same motion next
-      // step, and the next, held each time while forces and contact impulses added to it: a
-      // polygon spinning against a wall under gravity reached 75 m/s standing still, another
-      // pushed by a constant force 137 m/s and 465 rad/s, and their energy grew without bound.
+      // into that shape goes, as in an inelastic contact, and so does its spin, since it did
+      // not turn either. Kept, it made the same motion next step, and the next, held each time
+      // while forces and contact impulses added to it: a polygon spinning against a wall under
+      // gravity reached 75 m/s standing still, another pushed by a constant force 137 m/s and
+      // 465 rad/s, and their energy grew without bound. With the spin kept, a body whose
+      // touching corner the spin swung away from a wall (so that the contact let it come) while
+      // a force drove its centre in was held step after step, falling along the wall at 280 m/s
+      // standing still; and a long body spinning a corner into the floor slid along it at
+      // 140 m/s standing still.
       if (first == 0.0f && hitBody < 0) {
         const std::size_t i = 3 * static_cast<std::size_t>(b.slot);
         const float closing = v_[i] * heldOff.x + v_[i + 1] * heldOff.y;
@@ -242,6 +252,7 @@ void WorldState::continuous() {
           v_[i] -= closing * heldOff.x;
           v_[i + 1] -= closing * heldOff.y;
         }
+        v_[i + 2] = 0.0f;
       }
     }
   }

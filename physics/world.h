@@ -93,7 +93,7 @@ struct WorldDef {
   // below this (m, at the contact points and at the smaller body's reach as it turns) keeps the
   // manifold, its points carried by the bodies and its separations updated, instead of
   // colliding the shapes again: a resting pile's narrowphase costs next to nothing. 0: off.
-  float contactRecycleDistance = 0.005f;
+  float contactRecycleDistance = 0.001f;  // see physics/README.md for why 1 mm
   // Continuous collision: contact points are kept while shapes are within what their bodies
   // can close in the step (speculative contacts), so fast bodies stop at surfaces instead of
   // passing through thin walls. Off: only within kSpeculativeDistance (shows the tunnelling).

@@ -327,8 +327,8 @@ TEST(ContactRecycling, CarriedManifoldsStayWithinTheirBoundOfFreshOnes) {
         name, on.recycledSteps, on.recycledSteps + on.madeSteps, static_cast<double>(on.point),
         static_cast<double>(on.separation), on.kept, static_cast<double>(off.point),
         static_cast<double>(off.separation));
-    EXPECT_GT(on.recycledSteps, 25) << name;
-    EXPECT_GT(on.madeSteps, 20) << name;  // it moves: manifolds are made again
+    EXPECT_GT(on.recycledSteps, 5) << name;  // a rolling circle turns past the bound soonest
+    EXPECT_GT(on.madeSteps, 20) << name;     // it moves: manifolds are made again
     EXPECT_EQ(off.recycledSteps, 0) << name;
     EXPECT_LE(on.point, tolerance) << name;
     EXPECT_LE(on.separation, tolerance * 0.02f + 1e-5f) << name;

@@ -901,7 +901,7 @@ SceneRun runRandomScene(std::uint64_t seed, int steps) {
       run.deepest = std::max(run.deepest, depth);
       // Escaped: past the middle of the 1 m wall, from where its contact pushes it out the
       // other side. Not the face: a light sliver under bodies up to 3 x 10^5 times heavier sinks
-      // into the floor by the soft contacts' law (see the mass-ratio case), 18 cm at worst in 200
+      // into the floor by the soft contacts' law (see the mass-ratio case), 23 cm at worst in 200
       // seeds, and comes back out; that depth is reported.
       escaped[i] |= depth > 0.5f;
     }

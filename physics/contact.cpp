@@ -213,22 +213,20 @@ bool WorldState::recycle(Contact& c, const Body& a, const Body& b, Vec2 offset,
       a.type == BodyType::staticBody ? std::numeric_limits<float>::max() : a.maxExtent;
   const float reachB =
       b.type == BodyType::staticBody ? std::numeric_limits<float>::max() : b.maxExtent;
-  const float turned = std::min(reachA, reachB) * std::fabs(invMul(dqA, dqB).s);
+  // What is left of the tolerance for the points' own motion.
+  const float reach = tolerance - std::min(reachA, reachB) * std::fabs(invMul(dqA, dqB).s);
+  if (reach < 0.0f) return false;
   Manifold& m = c.manifold;
-  float separation[2];
   Vec2 carried[2];  // B's carried point from A's
   for (int k = 0; k < m.pointCount; ++k) {
     const ManifoldPoint& mp = m.points[k];
-    const Vec2 d = offset + rotate(dqB, mp.anchorB) - rotate(dqA, mp.anchorA);
-    carried[k] = d;
-    const float reach = tolerance - turned;
-    if (!(lengthSquared(d) <= reach * reach) || reach < 0.0f) return false;
-    separation[k] = c.madeSeparation[k] + dot(d, m.normal);
+    carried[k] = offset + rotate(dqB, mp.anchorB) - rotate(dqA, mp.anchorA);
+    if (!(lengthSquared(carried[k]) <= reach * reach)) return false;
   }
   // The point reported (events, contactPoints): midway between the two carried points.
   for (int k = 0; k < m.pointCount; ++k) {
     ManifoldPoint& mp = m.points[k];
-    mp.separation = separation[k];
+    mp.separation = c.madeSeparation[k] + dot(carried[k], m.normal);
     mp.point = a.xf.p + rotate(dqA, mp.anchorA) + 0.5f * carried[k];
   }
   c.recycled = true;

@@ -66,6 +66,10 @@ class Out {
     w_.f32(v.x);
     w_.f32(v.y);
   }
+  void operator()(const Rot& q) {
+    w_.f32(q.c);
+    w_.f32(q.s);
+  }
   template <class E>
   requires std::is_enum_v<E>
   void operator()(const E& e, int) { w_.u8(static_cast<std::uint8_t>(e)); }
@@ -93,6 +97,10 @@ class In {
   void operator()(Vec2& v) {
     v.x = r_.f32();
     v.y = r_.f32();
+  }
+  void operator()(Rot& q) {
+    q.c = r_.f32();
+    q.s = r_.f32();
   }
   // An enumeration of `values` values, refused outside them.
   template <class E>
@@ -239,8 +247,7 @@ void ioState(A& a, W& s) {
       a(*flag);
     a(b.generation);
     a(b.xf.p);
-    a(b.xf.q.c);
-    a(b.xf.q.s);
+    a(b.xf.q);
     a(b.angle);
     a(b.force);
     for (auto* f : {&b.torque, &b.linearDamping, &b.angularDamping, &b.gravityScale, &b.sleepTime})
@@ -282,10 +289,8 @@ void ioState(A& a, W& s) {
       a(p.id);
       a(c.madeSeparation[k]);
     }
-    a(c.madeQA.c);
-    a(c.madeQA.s);
-    a(c.madeQB.c);
-    a(c.madeQB.s);
+    a(c.madeQA);
+    a(c.madeQB);
     a(c.recyclable);
     a(c.recycled);
     for (int k = 0; k < 2; ++k) {
@@ -417,8 +422,8 @@ void decode(ByteReader& r, WorldState& s) {
       finite = finite && isFinite(p.point) && isFinite(p.anchorA) && isFinite(p.anchorB) &&
                std::isfinite(p.separation) && std::isfinite(c.madeSeparation[k]);
     }
-    finite = finite && std::isfinite(c.madeQA.c) && std::isfinite(c.madeQA.s) &&
-             std::isfinite(c.madeQB.c) && std::isfinite(c.madeQB.s);
+    finite =
+        finite && isFinite(Vec2{c.madeQA.c, c.madeQA.s}) && isFinite(Vec2{c.madeQB.c, c.madeQB.s});
     need(finite, "a contact is not finite");
   }
   // (A position floats cannot hold would overflow the step's boxes.)

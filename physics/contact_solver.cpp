@@ -9,6 +9,7 @@
 #include "physics/contact_solver.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cstddef>
 #include <cstring>
 #include <vector>
@@ -294,7 +295,13 @@ RC_INLINE void solveBatch(Batch<N>& c, SolverBody* bodies, const ContactSoftness
     const F s = dx * c.nx + dy * c.ny + p.baseSeparation;
     const M apart = s > 0.0f;
     r.isSoft = ~apart & (s <= -kLinearSlop) & biasLanes;
-    const F push = vmax(soft.biasRate * s, -c.maxPushout);
+    // The push-out cap bounds how fast overlapping points part, not what a contact carries: on
+    // top of it, the bias that holds the point's impulse against the softness's leak
+    // (s_i l / (s_m m)). Capped alone, a soft contact carries at most m s_m cap / (s_i h), and a
+    // heavier load (1000 kg on a 1 kg box: 30 times that) drives it in without end.
+    // (A lane without this point has neither mass nor impulse: 0 / FLT_MIN, no NaN.)
+    const F hold = soft.leak * p.normalImpulse / vmax(p.normalMass, splat<F>(FLT_MIN));
+    const F push = vmax(soft.biasRate * s, -c.maxPushout - hold);
     // Inside the slop, rigid, but pushed out towards half of it at the soft bias rate (the relax
     // pass takes the push's velocity back out): what a stack took in while it settled comes back
     // out, where a rigid contact alone keeps it (a tall pyramid's top stays low by what its
@@ -568,6 +575,7 @@ ContactSoftness ContactSoftness::make(float h, float hertz, float dampingRatio) 
   s.impulseScale = a3;
   s.invMassScale = 1.0f / s.massScale;
   s.carry = (1.0f - s.impulseScale) * s.invMassScale;
+  s.leak = s.impulseScale * s.invMassScale;
   return s;
 }
 

@@ -82,6 +82,8 @@ struct ContactSoftness {
   float invH = 0, biasRate = 0, massScale = 1, impulseScale = 0;
   // For the two-point block solve: 1 / s_m and (1 - s_i) / s_m.
   float invMassScale = 1, carry = 0;
+  // s_i / s_m: the bias that holds an impulse l against the leak is leak l / m.
+  float leak = 0;
   static ContactSoftness make(float h, float hertz, float dampingRatio);
 };
 

@@ -243,8 +243,20 @@ Outcome soak(int count, long steps, bool progress) {
     // Every step: a body through a wall can come back through it (the look costs little beside
     // the step). A quarantined body is disabled for good and counted above, so the full state
     // is looked at every 100 steps.
-    for (std::size_t i = 0; i < bodies.size(); ++i)
-      escaped[i] |= outside(interior, w.worldCenter(bodies[i]));
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const Vec2 c = w.worldCenter(bodies[i]);
+      if (escaped[i] || !outside(interior, c)) continue;
+      escaped[i] = 1;
+      // Where and how, to replay it: the step, the body, and its state now.
+      const Vec2 v = w.linearVelocity(bodies[i]);
+      std::fprintf(
+          stderr,
+          "soak: step %ld: body %zu (%s) escaped: centre (%.9g, %.9g), %.3g m past the "
+          "wall, velocity (%.6g, %.6g), angular velocity %.6g\n",
+          k, i,
+          i < static_cast<std::size_t>(fastCount) ? (i % 2 == 0 ? "fast, bullet" : "fast") : "slow",
+          c.x, c.y, pastWall(interior, c), v.x, v.y, w.angularVelocity(bodies[i]));
+    }
     if (k % 100 == 0 || k == steps)
       for (std::size_t i = 0; i < bodies.size(); ++i)
         broken[i] |= !finite(w, bodies[i]) || !w.isEnabled(bodies[i]);

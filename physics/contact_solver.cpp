@@ -299,8 +299,10 @@ RC_INLINE void solveBatch(Batch<N>& c, SolverBody* bodies, const ContactSoftness
     // top of it, the bias that holds the point's impulse against the softness's leak
     // (s_i l / (s_m m)). Capped alone, a soft contact carries at most m s_m cap / (s_i h), and a
     // heavier load (1000 kg on a 1 kg box: 30 times that) drives it in without end.
-    // (A lane without this point has neither mass nor impulse: 0 / FLT_MIN, no NaN.)
-    const F hold = soft.leak * p.normalImpulse / vmax(p.normalMass, splat<F>(FLT_MIN));
+    // Only the pass with bias pushes (the relax pass skips the division). A lane without this
+    // point has neither mass nor impulse: 0 / FLT_MIN, no NaN.
+    const F hold =
+        useBias ? soft.leak * p.normalImpulse / vmax(p.normalMass, splat<F>(FLT_MIN)) : F{};
     const F push = vmax(soft.biasRate * s, -c.maxPushout - hold);
     // Inside the slop, rigid, but pushed out towards half of it at the soft bias rate (the relax
     // pass takes the push's velocity back out): what a stack took in while it settled comes back

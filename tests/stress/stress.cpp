@@ -81,16 +81,24 @@ rc::BodyDef dynamicAt(Vec2 p, Vec2 v = {}, float angle = 0.0f) {
   return def;
 }
 
-// A closed box of four static walls `thickness` thick around `interior`, overlapping at the
-// corners so that nothing finds a seam.
-void addContainer(World& w, const AABB& interior, float thickness, const rc::ShapeDef& sd = {}) {
-  const BodyId walls = w.createBody({});
+// The four walls of a closed box `thickness` thick around `interior`, each as half-extents and
+// a centre, overlapping at the corners so that nothing finds a seam.
+struct Wall {
+  Vec2 half, centre;
+};
+std::array<Wall, 4> containerWalls(const AABB& interior, float thickness) {
   const Vec2 c = interior.center(), e = interior.extents();
   const float t = 0.5f * thickness;
-  w.createShape(walls, rc::makeBox(e.x + thickness, t, {c.x, interior.lower.y - t}), sd);
-  w.createShape(walls, rc::makeBox(e.x + thickness, t, {c.x, interior.upper.y + t}), sd);
-  w.createShape(walls, rc::makeBox(t, e.y + thickness, {interior.lower.x - t, c.y}), sd);
-  w.createShape(walls, rc::makeBox(t, e.y + thickness, {interior.upper.x + t, c.y}), sd);
+  return {{{{e.x + thickness, t}, {c.x, interior.lower.y - t}},
+           {{e.x + thickness, t}, {c.x, interior.upper.y + t}},
+           {{t, e.y + thickness}, {interior.lower.x - t, c.y}},
+           {{t, e.y + thickness}, {interior.upper.x + t, c.y}}}};
+}
+
+void addContainer(World& w, const AABB& interior, float thickness, const rc::ShapeDef& sd = {}) {
+  const BodyId walls = w.createBody({});
+  for (const Wall& wall : containerWalls(interior, thickness))
+    w.createShape(walls, rc::makeBox(wall.half.x, wall.half.y, wall.centre), sd);
 }
 
 Vec2 direction(rc::Random& rng) {
@@ -678,45 +686,75 @@ struct PressureResult {
   bool finite = true;
 };
 
-// `count` circles of 0.10 to 0.15 m (density 1) in a 10 m wide box of 2 m walls under gravity,
-// pressed by a piston: a fixed-rotation box of `pistonMass` 5 cm narrower than the box (no
-// circle fits past it), pushed down by a force rising over a second to `force` N.
+// The pressure case's scene, the same in both engines: `count` circles of 0.10 to 0.15 m
+// (density 1, radii drawn in order from one seed) on a grid 0.32 m apart, 31 to a row (the
+// largest never start touching), in a 10 m wide box of 2 m walls; above them a piston, a
+// fixed-rotation box 5 cm narrower than the box (no circle fits past it).
+struct PressurePile {
+  static constexpr int perRow = 31;
+  static constexpr float wallThickness = 2.0f;
+  static constexpr float pistonHalfWidth = 4.975f, pistonHalfHeight = 0.25f;
+  AABB interior{{-5, 0}, {5, 30}};
+  std::vector<Vec2> centres;
+  std::vector<float> radii;
+  Vec2 piston;  // its centre, 0.5 m above the top row
+
+  explicit PressurePile(int count) {
+    rc::Random rng(1002);
+    float top = 0;
+    for (int i = 0; i < count; ++i) {
+      centres.push_back({-4.8f + 0.32f * static_cast<float>(i % perRow),
+                         0.2f + 0.32f * static_cast<float>(i / perRow)});
+      radii.push_back(rng.uniform(0.10f, 0.15f));
+      top = std::max(top, centres.back().y);
+    }
+    piston = {0, top + 0.5f};
+  }
+  static float pistonDensity(float mass) {
+    return mass / (2.0f * pistonHalfWidth * 2.0f * pistonHalfHeight);
+  }
+  // The piston pushed down by a force rising over a second to `force`.
+  static float pistonForce(float force, double time) {
+    return -force * static_cast<float>(std::min(1.0, time));
+  }
+  // A circle out of the box, or above the piston's underside.
+  bool out(Vec2 centre, float pistonY) const {
+    return outside(interior, centre) || centre.y > pistonY - pistonHalfHeight;
+  }
+};
+
+// The pile under gravity, pressed by a piston of `pistonMass` pushed down by up to `force` N.
 PressureResult runPressure(int count, int steps, float pistonMass, float force) {
   rc::WorldDef def;
   def.bounds = {{-16, -8}, {16, 40}};
   World w(def);
-  const AABB interior{{-5, 0}, {5, 30}};
-  addContainer(w, interior, 2.0f);
-  rc::Random rng(1002);
+  const PressurePile pile(count);
+  addContainer(w, pile.interior, PressurePile::wallThickness);
   std::vector<BodyId> circles;
-  const int perRow = 31;  // 0.32 m apart: the largest circles never start touching
-  float top = 0, lightest = 1e9f, weight = 0;
+  float lightest = 1e9f, weight = 0;
   for (int i = 0; i < count; ++i) {
-    const Vec2 p{-4.8f + 0.32f * static_cast<float>(i % perRow),
-                 0.2f + 0.32f * static_cast<float>(i / perRow)};
-    circles.push_back(w.createBody(dynamicAt(p)));
-    w.createShape(circles.back(), rc::makeCircle({}, rng.uniform(0.10f, 0.15f)));
-    top = std::max(top, p.y);
+    circles.push_back(w.createBody(dynamicAt(pile.centres[static_cast<std::size_t>(i)])));
+    w.createShape(circles.back(), rc::makeCircle({}, pile.radii[static_cast<std::size_t>(i)]));
     lightest = std::min(lightest, w.mass(circles.back()));
     weight += w.mass(circles.back()) * -def.gravity.y;
   }
-  rc::BodyDef pistonDef = dynamicAt({0, top + 0.5f});
+  rc::BodyDef pistonDef = dynamicAt(pile.piston);
   pistonDef.fixedRotation = true;
   const BodyId piston = w.createBody(pistonDef);
-  constexpr float pistonHalfHeight = 0.25f;
   rc::ShapeDef pistonShape;
-  pistonShape.density = pistonMass / (2.0f * 4.975f * 2.0f * pistonHalfHeight);
-  w.createShape(piston, rc::makeBox(4.975f, pistonHalfHeight), pistonShape);
+  pistonShape.density = PressurePile::pistonDensity(pistonMass);
+  w.createShape(piston, rc::makeBox(PressurePile::pistonHalfWidth, PressurePile::pistonHalfHeight),
+                pistonShape);
   w.addForceField([&](rc::ForceStage& s) {
-    s.addForce(piston, {0, -force * static_cast<float>(std::min(1.0, s.time()))});
+    s.addForce(piston, {0, PressurePile::pistonForce(force, s.time())});
   });
   PressureResult r;
   std::vector<char> out(circles.size(), 0);
   // A column's bottom contact carries the column and its share of the piston, over the lightest
   // circle's mass (see the mass-ratio case).
   const float omega = 2.0f * kPi * def.contactHertz;
-  r.law = (weight + pistonMass * -def.gravity.y + force) / static_cast<float>(perRow) / lightest /
-          (omega * omega);
+  r.law = (weight + pistonMass * -def.gravity.y + force) /
+          static_cast<float>(PressurePile::perRow) / lightest / (omega * omega);
   double pistonAtHalf = 0;
   for (int k = 1; k <= steps; ++k) {
     w.step(kStep);
@@ -727,11 +765,10 @@ PressureResult runPressure(int count, int steps, float pistonMass, float force) 
           r.deepest = -p.separation;
           r.deepestAt = p.point.y;
         }
-      const float underside = w.worldCenter(piston).y - pistonHalfHeight;
+      const float pistonY = w.worldCenter(piston).y;
       for (std::size_t i = 0; i < circles.size(); ++i) {
-        const Vec2 c = w.worldCenter(circles[i]);
         r.finite = r.finite && finite(w, circles[i]);
-        out[i] |= outside(interior, c) || c.y > underside;
+        out[i] |= pile.out(w.worldCenter(circles[i]), pistonY);
       }
     }
     if (k == steps / 2) pistonAtHalf = w.precisePosition(piston)[1];
@@ -740,42 +777,32 @@ PressureResult runPressure(int count, int steps, float pistonMass, float force) 
   r.escapes = std::count(out.begin(), out.end(), 1);
   r.sank = pistonAtHalf - w.precisePosition(piston)[1];
   r.settled = deepestPenetration(w);
-  r.pistonAt = w.worldCenter(piston).y - pistonHalfHeight;
+  r.pistonAt = w.worldCenter(piston).y - PressurePile::pistonHalfHeight;
   return r;
 }
 
 // The same pile and piston in Box2D 2.4.1 (8 velocity and 3 position iterations, its testbed's
-// defaults), for `steps` steps: the circles (and their radii, drawn in the same order from the
-// same seed) out of the box or past the piston, the independent measure of what a load does.
-// Its polygons carry a 0.01 m skin: the piston is given 0.01 m smaller so that its surface is
-// where ours is (the walls are thick enough not to care).
+// defaults), for `steps` steps: the circles out of the box or past the piston, the independent
+// measure of what a load does. Its polygons carry a 0.01 m skin: the piston is given 0.01 m
+// smaller so that its surface is where ours is (the walls are thick enough not to care).
 long box2dPressureEscapes(int count, int steps, float pistonMass, float force) {
   b2World w(b2Vec2(0.0f, -10.0f));
+  const PressurePile pile(count);
   b2BodyDef groundDef;
   b2Body* ground = w.CreateBody(&groundDef);
-  const AABB interior{{-5, 0}, {5, 30}};
-  const float t = 2.0f;  // the walls, as addContainer builds them
-  const auto wall = [&](float x0, float y0, float x1, float y1) {
+  for (const Wall& wall : containerWalls(pile.interior, PressurePile::wallThickness)) {
     b2PolygonShape box;
-    box.SetAsBox(0.5f * (x1 - x0), 0.5f * (y1 - y0), b2Vec2(0.5f * (x0 + x1), 0.5f * (y0 + y1)),
-                 0.0f);
+    box.SetAsBox(wall.half.x, wall.half.y, b2Vec2(wall.centre.x, wall.centre.y), 0.0f);
     ground->CreateFixture(&box, 0.0f);
-  };
-  wall(-5 - t, -t, 5 + t, 0);
-  wall(-5 - t, 30, 5 + t, 30 + t);
-  wall(-5 - t, -t, -5, 30 + t);
-  wall(5, -t, 5 + t, 30 + t);
-  rc::Random rng(1002);
+  }
   std::vector<b2Body*> circles;
-  float top = 0;
   for (int i = 0; i < count; ++i) {
     b2BodyDef bd;
     bd.type = b2_dynamicBody;
-    bd.position.Set(-4.8f + 0.32f * static_cast<float>(i % 31),
-                    0.2f + 0.32f * static_cast<float>(i / 31));
-    top = std::max(top, bd.position.y);
+    bd.position.Set(pile.centres[static_cast<std::size_t>(i)].x,
+                    pile.centres[static_cast<std::size_t>(i)].y);
     b2CircleShape circle;
-    circle.m_radius = rng.uniform(0.10f, 0.15f);
+    circle.m_radius = pile.radii[static_cast<std::size_t>(i)];
     b2FixtureDef fd;
     fd.shape = &circle;
     fd.density = 1.0f;
@@ -786,27 +813,26 @@ long box2dPressureEscapes(int count, int steps, float pistonMass, float force) {
   b2BodyDef pistonDef;
   pistonDef.type = b2_dynamicBody;
   pistonDef.fixedRotation = true;
-  pistonDef.position.Set(0.0f, top + 0.5f);
+  pistonDef.position.Set(pile.piston.x, pile.piston.y);
   b2Body* piston = w.CreateBody(&pistonDef);
   b2PolygonShape pistonBox;
-  pistonBox.SetAsBox(4.975f - b2_polygonRadius, 0.25f - b2_polygonRadius);
+  pistonBox.SetAsBox(PressurePile::pistonHalfWidth - b2_polygonRadius,
+                     PressurePile::pistonHalfHeight - b2_polygonRadius);
   b2FixtureDef pf;
   pf.shape = &pistonBox;
-  pf.density = pistonMass / (2.0f * 4.975f * 0.5f);
+  pf.density = PressurePile::pistonDensity(pistonMass);
   pf.friction = rc::ShapeDef{}.friction;
   piston->CreateFixture(&pf);
   std::vector<char> out(circles.size(), 0);
   for (int k = 1; k <= steps; ++k) {
-    const float time = static_cast<float>(k - 1) * kStep;
-    piston->ApplyForceToCenter(b2Vec2(0.0f, -force * std::min(1.0f, time)), true);
+    const double time = static_cast<double>(k - 1) * kStep;
+    piston->ApplyForceToCenter(b2Vec2(0.0f, PressurePile::pistonForce(force, time)), true);
     w.Step(kStep, 8, 3);
-    if (k % 10 == 0 || k == steps) {
-      const float underside = piston->GetPosition().y - 0.25f;
+    if (k % 10 == 0 || k == steps)
       for (std::size_t i = 0; i < circles.size(); ++i) {
         const b2Vec2 c = circles[i]->GetPosition();
-        out[i] |= outside(interior, {c.x, c.y}) || c.y > underside;
+        out[i] |= pile.out({c.x, c.y}, piston->GetPosition().y);
       }
-    }
   }
   return std::count(out.begin(), out.end(), 1);
 }

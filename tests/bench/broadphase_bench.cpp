@@ -12,6 +12,9 @@
 //   raycast     10,000 closest-hit casts of 50 m among 1,000 (and 65,536) circles, from points
 //               outside every circle, each engine with its own exact circle ray cast in the
 //               callback. Time per cast.
+//   raycast world  the same 1,000-circle casts through each engine's world (World::castRay;
+//               b2World::RayCast with a closest-hit callback): each circle a static body, the
+//               walls static boxes in a category the rays skip. What a game pays per shot.
 //   query       10,000 AABB queries of 5 m boxes, counting the proxies found. Time per query.
 //   crossover   our quadtree (never falling back) against our brute force on small scenes:
 //               pair update per step, 50 m ray casts, 5 m AABB queries. Where the tree starts
@@ -22,6 +25,9 @@
 #include <box2d/b2_broad_phase.h>
 #include <box2d/b2_circle_shape.h>
 #include <box2d/b2_dynamic_tree.h>
+#include <box2d/b2_fixture.h>
+#include <box2d/b2_polygon_shape.h>
+#include <box2d/b2_world.h>
 
 #include <algorithm>
 #include <cmath>
@@ -34,6 +40,7 @@
 #include "bench/ratio_table.h"
 #include "physics/broadphase.h"
 #include "physics/random.h"
+#include "physics/world.h"
 
 namespace {
 
@@ -309,6 +316,94 @@ void raysBox2D(benchmark::State& state, const QueryScene& q, const Box2DTreeScen
       hits / static_cast<double>(state.iterations() * static_cast<std::int64_t>(q.rays.size()));
 }
 
+// The query scene as worlds: each circle a static body, the walls static boxes in category 2,
+// which the casts' filter skips (in the tree-only rows the exact test skips them).
+constexpr std::uint32_t kWallCategory = 2;
+
+std::unique_ptr<rc::World> worldOurs(const QueryScene& q) {
+  auto w = std::make_unique<rc::World>();
+  rc::ShapeDef wall;
+  wall.filter.category = kWallCategory;
+  const rc::BodyId walls = w->createBody({});
+  for (const AABB& b : q.arena.walls)
+    w->createShape(walls,
+                   rc::makeBox(0.5f * (b.upper.x - b.lower.x), 0.5f * (b.upper.y - b.lower.y),
+                               0.5f * (b.lower + b.upper)),
+                   wall);
+  for (Vec2 c : q.arena.positions[0]) {
+    rc::BodyDef bd;
+    bd.position = c;
+    w->createShape(w->createBody(bd), rc::makeCircle({}, kRadius), {});
+  }
+  return w;
+}
+
+void raysWorldOurs(benchmark::State& state, const QueryScene& q, const rc::World& w) {
+  const rc::QueryFilter filter(rc::ProxyFilter{1, ~kWallCategory});
+  double hits = 0;
+  for (auto _ : state) {
+    for (const rc::RayCastInput& in : q.rays) {
+      const auto h = w.castRay(in.origin, in.translation, filter);
+      hits += h.has_value();
+      benchmark::DoNotOptimize(h);
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(q.rays.size()));
+  state.counters["hit_rate"] =
+      hits / static_cast<double>(state.iterations() * static_cast<std::int64_t>(q.rays.size()));
+}
+
+std::unique_ptr<b2World> worldBox2D(const QueryScene& q) {
+  auto w = std::make_unique<b2World>(b2Vec2(0, 0));
+  b2BodyDef gd;
+  b2Body* walls = w->CreateBody(&gd);
+  for (const AABB& b : q.arena.walls) {
+    b2PolygonShape box;
+    box.SetAsBox(0.5f * (b.upper.x - b.lower.x), 0.5f * (b.upper.y - b.lower.y),
+                 b2Vec2(0.5f * (b.lower.x + b.upper.x), 0.5f * (b.lower.y + b.upper.y)), 0.0f);
+    b2FixtureDef fd;
+    fd.shape = &box;
+    fd.filter.categoryBits = kWallCategory;
+    walls->CreateFixture(&fd);
+  }
+  for (Vec2 c : q.arena.positions[0]) {
+    b2BodyDef bd;
+    bd.position.Set(c.x, c.y);
+    b2CircleShape circle;
+    circle.m_radius = kRadius;
+    w->CreateBody(&bd)->CreateFixture(&circle, 0.0f);
+  }
+  return w;
+}
+
+// Closest hit: each hit clips the ray; a wall is skipped (-1), as the filter does in ours.
+struct Box2DWorldClosest : b2RayCastCallback {
+  bool hit = false;
+  float best = 1.0f;
+  float ReportFixture(b2Fixture* f, const b2Vec2&, const b2Vec2&, float fraction) override {
+    if (f->GetFilterData().categoryBits == kWallCategory) return -1.0f;
+    hit = true;
+    best = fraction;
+    return fraction;
+  }
+};
+
+void raysWorldBox2D(benchmark::State& state, const QueryScene& q, const b2World& w) {
+  double hits = 0;
+  for (auto _ : state) {
+    for (const rc::RayCastInput& in : q.rays) {
+      Box2DWorldClosest cb;
+      w.RayCast(&cb, b2Vec2(in.origin.x, in.origin.y),
+                b2Vec2(in.origin.x + in.translation.x, in.origin.y + in.translation.y));
+      hits += cb.hit;
+      benchmark::DoNotOptimize(cb.best);
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(q.rays.size()));
+  state.counters["hit_rate"] =
+      hits / static_cast<double>(state.iterations() * static_cast<std::int64_t>(q.rays.size()));
+}
+
 template <class Broadphase>
 void queriesOurs(benchmark::State& state, const QueryScene& q, const Broadphase& tree) {
   double found = 0;
@@ -397,6 +492,15 @@ void registerAll() {
                                  [q, t](benchmark::State& s) { raysOurs(s, *q, *t); });
     benchmark::RegisterBenchmark(("raycast/50m" + among + "/box2d").c_str(),
                                  [q, b](benchmark::State& s) { raysBox2D(s, *q, *b); });
+    if (n == 1000) {
+      static std::unique_ptr<rc::World> ourWorld = worldOurs(*q);
+      static std::unique_ptr<b2World> box2dWorld = worldBox2D(*q);
+      benchmark::RegisterBenchmark(("raycast world/50m" + among + "/ours").c_str(),
+                                   [q](benchmark::State& s) { raysWorldOurs(s, *q, *ourWorld); });
+      benchmark::RegisterBenchmark(
+          ("raycast world/50m" + among + "/box2d").c_str(),
+          [q](benchmark::State& s) { raysWorldBox2D(s, *q, *box2dWorld); });
+    }
     benchmark::RegisterBenchmark(("query/5m box" + among + "/ours").c_str(),
                                  [q, t](benchmark::State& s) { queriesOurs(s, *q, *t); });
     benchmark::RegisterBenchmark(("query/5m box" + among + "/box2d").c_str(),

@@ -479,22 +479,21 @@ class Quadtree::CellWalk {
   // Returns false when the cast misses the level's cells within [0, maxFraction].
   bool start(const Quadtree& qt, const Tree& tree, int level, const RayCastInput& in,
              float radius) {
-    tree_ = &tree;
-    level_ = level;
     const Level& lv = tree.levels[static_cast<std::size_t>(level)];
+    heads_ = lv.heads.data();
     side_ = lv.side;
     const float inv = 1.0f / lv.cellSize;
     // A thousandth of a cell of slack: rounding in the cell coordinates must never drop a cell.
-    h_ = (lv.queryMargin() + radius) * inv + 1e-3f;
+    const float h = (lv.queryMargin() + radius) * inv + 1e-3f;
     const Vec2 o = (in.origin - qt.origin_) * inv, d = in.translation * inv;
     // The part of the cast that can touch any cell: a in [-h, side + h] on both axes.
-    const float hi = static_cast<float>(side_) + h_;
+    const float hi = static_cast<float>(side_) + h;
     const SegmentProbe probe(RayCastInput{o, d, in.maxFraction}, 0.0f);
-    const AABB grid{{-h_, -h_}, {hi, hi}};
+    const AABB grid{{-h, -h}, {hi, hi}};
     float t0 = 0.0f;
     if (!probe.clip(grid, in.maxFraction, t0, end_)) return false;
-    axis_[0].start(o.x, d.x, t0, h_, side_);
-    axis_[1].start(o.y, d.y, t0, h_, side_);
+    axis_[0].start(o.x, d.x, t0, h, side_);
+    axis_[1].start(o.y, d.y, t0, h, side_);
     next_ = t0;
     started_ = false;
     return true;
@@ -503,12 +502,12 @@ class Quadtree::CellWalk {
   // The lower bound of the next cells this walk will visit (kNever when done).
   float next() const { return next_; }
 
-  // Visits the next cells; visitCell(level, cell) returns false to stop the whole cast.
-  template <class VisitCell>
-  bool step(VisitCell& visitCell) {
+  // Visits the next cells; visitList(head) returns false to stop the whole cast.
+  template <class VisitList>
+  bool step(VisitList& visitList) {
     if (!started_) {
       started_ = true;
-      if (!visitBlock(axis_[0].lo, axis_[0].hi, axis_[1].lo, axis_[1].hi, visitCell)) return false;
+      if (!visitBlock(axis_[0].lo, axis_[0].hi, axis_[1].lo, axis_[1].hi, visitList)) return false;
     } else {
       // Trailing edges that passed before this entry first; at a tie the cell is still in.
       const int k = axis_[0].enter <= axis_[1].enter ? 0 : 1;
@@ -518,9 +517,10 @@ class Quadtree::CellWalk {
           a.advanceLeave();
       const int entering = axis_[k].advanceEnter();
       const Axis& other = axis_[1 - k];
-      const bool ok = k == 0 ? visitBlock(entering, entering, other.lo, other.hi, visitCell)
-                             : visitBlock(other.lo, other.hi, entering, entering, visitCell);
-      if (!ok) return false;
+      // The entering column (or row) against the other axis's window.
+      const int x0 = k == 0 ? entering : other.lo, x1 = k == 0 ? entering : other.hi;
+      const int y0 = k == 0 ? other.lo : entering, y1 = k == 0 ? other.hi : entering;
+      if (!visitBlock(x0, x1, y0, y1, visitList)) return false;
     }
     next_ = std::min(axis_[0].enter, axis_[1].enter);
     if (next_ > end_) next_ = kNever;  // past the grid
@@ -528,73 +528,71 @@ class Quadtree::CellWalk {
   }
 
  private:
-  // One axis: the window [lo, hi] of cell indices (not clamped to the grid) and the times of
-  // its next entry and exit.
+  // One axis, mirrored when the cast runs towards lower cells (cell i is then side - 1 - i), so
+  // that it always runs towards higher ones: the window [lo, hi] of (mirrored) cell indices, not
+  // clamped to the grid, and the times of its next entry and exit. A cast that does not move
+  // along the axis keeps its window: no entry, no exit.
   struct Axis {
-    float o, d, inv, h;  // inv: 1 / d (0 when d is)
+    float o, inv, h;  // inv: 1 / |d|
     int lo, hi, side;
+    bool mirrored;
     float enter, leave;
     void start(float origin, float dir, float t0, float halo, int cells) {
-      o = origin;
-      d = dir;
-      inv = d != 0.0f ? 1.0f / d : 0.0f;
-      h = halo;
+      mirrored = dir < 0.0f;
       side = cells;
+      h = halo;
+      o = mirrored ? static_cast<float>(cells) - origin : origin;
+      const float d = std::fabs(dir);
       const float a = o + t0 * d;
       lo = static_cast<int>(std::ceil(a - 1.0f - h));
       hi = static_cast<int>(std::floor(a + h));
+      if (d == 0.0f) {
+        inv = 0.0f;
+        enter = leave = kNever;
+        return;
+      }
+      inv = 1.0f / d;
       scheduleEnter();
       scheduleLeave();
     }
     // Entries stop at the grid's edge; exits matter only while entries on the other axis
     // still come.
     void scheduleEnter() {
-      if (d > 0.0f)
-        enter = hi + 1 < side ? (static_cast<float>(hi + 1) - h - o) * inv : kNever;
-      else if (d < 0.0f)
-        enter = lo - 1 >= 0 ? (static_cast<float>(lo) + h - o) * inv : kNever;
-      else
-        enter = kNever;
+      enter = hi + 1 < side ? (static_cast<float>(hi + 1) - h - o) * inv : kNever;
     }
-    void scheduleLeave() {
-      if (d > 0.0f)
-        leave = (static_cast<float>(lo + 1) + h - o) * inv;
-      else if (d < 0.0f)
-        leave = (static_cast<float>(hi) - h - o) * inv;
-      else
-        leave = kNever;
-    }
+    void scheduleLeave() { leave = (static_cast<float>(lo + 1) + h - o) * inv; }
     int advanceEnter() {
-      const int index = d > 0.0f ? ++hi : --lo;
+      ++hi;
       scheduleEnter();
-      return index;
+      return hi;
     }
     void advanceLeave() {
-      if (d > 0.0f)
-        ++lo;
-      else
-        --hi;
+      ++lo;
       scheduleLeave();
     }
+    // The grid's index of a window index.
+    int cell(int i) const { return mirrored ? side - 1 - i : i; }
   };
 
-  template <class VisitCell>
-  bool visitBlock(int x0, int x1, int y0, int y1, VisitCell& visitCell) const {
+  template <class VisitList>
+  bool visitBlock(int x0, int x1, int y0, int y1, VisitList& visitList) const {
     x0 = std::max(x0, 0);
     y0 = std::max(y0, 0);
     x1 = std::min(x1, side_ - 1);
     y1 = std::min(y1, side_ - 1);
-    for (int y = y0; y <= y1; ++y)
+    for (int y = y0; y <= y1; ++y) {
+      const ProxyId* row = heads_ + static_cast<std::ptrdiff_t>(axis_[1].cell(y)) * side_;
       for (int x = x0; x <= x1; ++x)
-        if (!visitCell(*tree_, level_, y * side_ + x)) return false;
+        if (!visitList(row[axis_[0].cell(x)])) return false;
+    }
     return true;
   }
 
   // No initializers: a cast keeps a walk for every level on its stack, and start() sets all of
   // it (initialized, the array of 22 walks was a twelfth of a ray cast).
-  const Tree* tree_;
-  int level_, side_;
-  float h_, next_, end_;
+  const ProxyId* heads_;
+  int side_;
+  float next_, end_;
   bool started_;
   Axis axis_[2];
 };
@@ -634,10 +632,6 @@ void Quadtree::cast(const RayCastInput& in, float radius, ProxyFilter filter, Ca
       if (tree->levels[static_cast<std::size_t>(l)].population > 0 &&
           walks[static_cast<std::size_t>(n)].start(*this, *tree, l, in, radius))
         ++n;
-  auto visitCell = [&](const Tree& tree, int level, int cell) {
-    return visitList(
-        tree.levels[static_cast<std::size_t>(level)].heads[static_cast<std::size_t>(cell)]);
-  };
   while (true) {
     int best = -1;
     float bestT = CellWalk::kNever;
@@ -647,7 +641,7 @@ void Quadtree::cast(const RayCastInput& in, float radius, ProxyFilter filter, Ca
         best = i;
       }
     if (best < 0 || bestT > current.maxFraction) return;
-    if (!walks[static_cast<std::size_t>(best)].step(visitCell)) return;
+    if (!walks[static_cast<std::size_t>(best)].step(visitList)) return;
   }
 }
 

@@ -326,10 +326,7 @@ std::unique_ptr<rc::World> worldOurs(const QueryScene& q) {
   wall.filter.category = kWallCategory;
   const rc::BodyId walls = w->createBody({});
   for (const AABB& b : q.arena.walls)
-    w->createShape(walls,
-                   rc::makeBox(0.5f * (b.upper.x - b.lower.x), 0.5f * (b.upper.y - b.lower.y),
-                               0.5f * (b.lower + b.upper)),
-                   wall);
+    w->createShape(walls, rc::makeBox(b.extents().x, b.extents().y, b.center()), wall);
   for (Vec2 c : q.arena.positions[0]) {
     rc::BodyDef bd;
     bd.position = c;
@@ -359,8 +356,7 @@ std::unique_ptr<b2World> worldBox2D(const QueryScene& q) {
   b2Body* walls = w->CreateBody(&gd);
   for (const AABB& b : q.arena.walls) {
     b2PolygonShape box;
-    box.SetAsBox(0.5f * (b.upper.x - b.lower.x), 0.5f * (b.upper.y - b.lower.y),
-                 b2Vec2(0.5f * (b.lower.x + b.upper.x), 0.5f * (b.lower.y + b.upper.y)), 0.0f);
+    box.SetAsBox(b.extents().x, b.extents().y, b2Vec2(b.center().x, b.center().y), 0.0f);
     b2FixtureDef fd;
     fd.shape = &box;
     fd.filter.categoryBits = kWallCategory;

@@ -144,6 +144,22 @@ TEST(World, FastBallKeepsBouncingBetweenWalls) {
   }
 }
 
+// The stress suite's arenas (the bullets case, the soak): no gravity, every shape with
+// restitution 0.5 and friction 0.2.
+struct ArenaRig {
+  rc::World w{[] {
+    rc::WorldDef def;
+    def.gravity = {0, 0};
+    return def;
+  }()};
+  rc::ShapeDef sd = [] {
+    rc::ShapeDef d;
+    d.restitution = 0.5f;
+    d.friction = 0.2f;
+    return d;
+  }();
+};
+
 // A bullet resting against a wall, fired at a ball wedged against the same wall, is deflected
 // into the wall. The ball's contact, solved after the wall's in a pass, pushes it into the wall
 // within a substep; the sweep after the solve saw a hit at fraction 0 (touching at the start)
@@ -154,12 +170,9 @@ TEST(World, BulletDeflectedIntoAWallStaysOut) {
   int worst = 0;
   float deepest = 0.0f;
   for (int shot = 0; shot < 40; ++shot) {
-    rc::WorldDef def;
-    def.gravity = {0, 0};
-    rc::World w(def);
-    rc::ShapeDef sd;
-    sd.restitution = 0.5f;
-    sd.friction = 0.2f;
+    ArenaRig rig;
+    rc::World& w = rig.w;
+    const rc::ShapeDef& sd = rig.sd;
     rc::BodyDef wallDef;
     w.createShape(w.createBody(wallDef), rc::makeBox(20, 1, {0, 1}), sd);  // face at y = 0
     rc::BodyDef ballDef = dynamicAt({-0.392f, -0.5f});
@@ -285,12 +298,9 @@ TEST(World, BoxStoppedByItsCentreAtAWallDoesNotGoOnIntoIt) {
   float deepest = -1.0f;
   int stopped = 0;
   for (int shot = 0; shot < 441; ++shot) {
-    rc::WorldDef def;
-    def.gravity = {0, 0};
-    rc::World w(def);
-    rc::ShapeDef sd;
-    sd.restitution = 0.5f;
-    sd.friction = 0.2f;
+    ArenaRig rig;
+    rc::World& w = rig.w;
+    const rc::ShapeDef& sd = rig.sd;
     w.createShape(w.createBody({}), rc::makeBox(1000, 0.05f, {0, 10.05f}), sd);  // face y = 10
     rc::BodyDef ballDef = dynamicAt({-0.2f + 0.01f * static_cast<float>(shot % 21 - 10), 9.3546f});
     ballDef.linearVelocity = {0.0969f, -0.7928f};

@@ -147,6 +147,7 @@ Quadtree::Quadtree(const AABB& worldBounds, int maxDepth) : ProxyStore("Quadtree
       Level& level = tree->levels[static_cast<std::size_t>(l)];
       level.side = 1 << l;
       level.cellSize = size_ / static_cast<float>(level.side);
+      level.invCellSize = static_cast<float>(level.side) / size_;
       // Cells are allocated when the level first holds a proxy (link, load): a default world's
       // finest levels are a million cells (11 MB to zero) that a small scene never touches, and
       // a batch of short replays would pay for them every time.

@@ -361,6 +361,25 @@ TEST(Broadphase, CastEdgeCases) {
               rc::castClosest(t.brute, far, 0.0f, {}, [&](ProxyId id, const rc::RayCastInput& r) {
                 return exactCast(t.brute, id, r, 0, false);
               })));
+  // Swept circles wider than the world (the walks' cell ranges clamped, not overflowing), and
+  // casts allowed to run far past their translation.
+  for (float radius : {150.0f, 1e6f}) {
+    for (int q = 0; q < 10; ++q) {
+      const rc::RayCastInput in{rng.inBox({-300, -300}, {300, 300}),
+                                rng.inBox({-50, -50}, {50, 50}), q % 2 == 0 ? 1.0f : 1e30f};
+      const auto a =
+          rc::castAll(t.tree, in, radius, {}, [&](ProxyId id, const rc::RayCastInput& r) {
+            return exactCast(t.tree, id, r, radius, true);
+          });
+      const auto b =
+          rc::castAll(t.brute, in, radius, {}, [&](ProxyId id, const rc::RayCastInput& r) {
+            return exactCast(t.brute, id, r, radius, true);
+          });
+      ASSERT_EQ(a.size(), b.size()) << "radius " << radius << " cast " << q;
+      for (std::size_t k = 0; k < a.size(); ++k)
+        ASSERT_TRUE(sameHit(a[k], b[k])) << "radius " << radius << " cast " << q << " hit " << k;
+    }
+  }
   const float nan = std::numeric_limits<float>::quiet_NaN();
   auto none = [](ProxyId, const rc::RayCastInput& r) { return r.maxFraction; };
   EXPECT_THROW(t.tree.cast({{nan, 0}, {1, 0}, 1}, 0.0f, {}, none), rc::InvalidProxy);

@@ -182,6 +182,8 @@ void Quadtree::link(ProxyId id, Tree& tree, int level, int cell) {
   ++lv.population;
   const Vec2 e = p.fat.extents();
   lv.reach = std::max(lv.reach, std::max(e.x, e.y));
+  lv.categories |= p.filter.category;
+  lv.masks |= p.filter.mask;
 }
 
 void Quadtree::unlink(ProxyId id) {
@@ -199,7 +201,10 @@ void Quadtree::unlink(ProxyId id) {
     return;
   }
   Level& lv = tree.levels[static_cast<std::size_t>(k.level)];
-  if (--lv.population == 0) lv.reach = 0.0f;
+  if (--lv.population == 0) {
+    lv.reach = 0.0f;
+    lv.categories = lv.masks = 0;
+  }
 }
 
 void Quadtree::place(ProxyId id) {
@@ -250,6 +255,16 @@ bool Quadtree::moveProxy(ProxyId id, const AABB& aabb, Vec2 displacement) {
   unlink(id);  // from the cell it records, whatever its new fat AABB
   place(id);
   return true;
+}
+
+void Quadtree::setFilter(ProxyId id, ProxyFilter filter) {
+  ProxyStore::setFilter(id, filter);
+  const ProxyLinks& k = links_[static_cast<std::size_t>(id)];
+  if (k.level < 0) return;
+  Level& lv =
+      treeOf(proxies_[static_cast<std::size_t>(id)]).levels[static_cast<std::size_t>(k.level)];
+  lv.categories |= filter.category;
+  lv.masks |= filter.mask;
 }
 
 void Quadtree::findPairs(std::vector<ProxyPair>& pairs) const {
@@ -360,6 +375,8 @@ void Quadtree::validateLists(bool fromHeads) const {
           AABB grown{lo, {lo.x + lv->cellSize + 2.0f * grow, lo.y + lv->cellSize + 2.0f * grow}};
           if (!grown.contains(p.fat)) fail(name + " sticks out of its cell by more than the reach");
           if (lv->reach > 0.5f * lv->cellSize) fail(name + " is too large for its level");
+          if ((p.filter.category & ~lv->categories) != 0 || (p.filter.mask & ~lv->masks) != 0)
+            fail(name + "'s filter is not in its level's");
         }
         prev = id;
       }
@@ -463,6 +480,7 @@ void Quadtree::clearAll() {
     for (Level& lv : tree->levels) {
       lv.population = 0;
       lv.reach = 0.0f;
+      lv.categories = lv.masks = 0;
     }
   }
 }
@@ -509,6 +527,8 @@ void Quadtree::load(ByteReader& in) {
       Level& lv = tree.levels[static_cast<std::size_t>(k.level)];
       if (k.cell < 0 || k.cell >= lv.side * lv.side) in.fail("broadphase: cell out of range");
       ++lv.population;
+      lv.categories |= p.filter.category;
+      lv.masks |= p.filter.mask;
       if (k.prev == kNullProxy) {
         if (lv.heads.empty())
           lv.heads.assign(static_cast<std::size_t>(lv.side) * lv.side, kNullProxy);

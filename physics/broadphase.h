@@ -209,6 +209,8 @@ class Quadtree : public ProxyStore {
   // displacement left the fat AABB and the proxy was re-inserted (it then takes part in the
   // next updatePairs).
   bool moveProxy(ProxyId id, const AABB& aabb, Vec2 displacement = {});
+  // ProxyStore::setFilter, and the proxy's level learns the new filter.
+  void setFilter(ProxyId id, ProxyFilter filter);
 
   // Every pair of overlapping fat AABBs with at least one moving proxy that passes the
   // filters, each once, sorted. `pairs` is cleared first.
@@ -271,6 +273,13 @@ class Quadtree : public ProxyStore {
     // The reach plus a hair: placement rounds the proxy's centre, and a proxy an ulp outside
     // its cell's grown bounds must still be found.
     float queryMargin() const { return reach + 1e-4f * cellSize; }
+    // Every category and every mask of a proxy placed here since the level was last empty:
+    // a query whose filter no proxy here can pass skips the level (as Box2D v3's tree nodes keep
+    // their subtree's category bits). Not saved: a restored tree recomputes them.
+    std::uint32_t categories = 0, masks = 0;
+    bool mayPass(ProxyFilter filter) const {
+      return (categories & filter.mask) != 0 && (filter.category & masks) != 0;
+    }
   };
   struct Tree {
     std::vector<Level> levels;
@@ -623,7 +632,9 @@ void Quadtree::cast(const RayCastInput& in, float radius, ProxyFilter filter, Ca
   int n = 0;
   for (const Tree* tree : {&moving_, &static_})
     for (const Level& level : tree->levels)
-      if (level.population > 0 && walks[static_cast<std::size_t>(n)].start(frame, level)) ++n;
+      if (level.population > 0 && level.mayPass(filter) &&
+          walks[static_cast<std::size_t>(n)].start(frame, level))
+        ++n;
   while (true) {
     int best = -1;
     float bestT = CellWalk::kNever;

@@ -387,6 +387,39 @@ TEST(Broadphase, CastEdgeCases) {
   EXPECT_THROW(t.tree.cast({{0, 0}, {1, 0}, 1}, -1.0f, {}, none), rc::InvalidProxy);
 }
 
+// A cast skips the levels where no proxy can pass its filter; a proxy whose filter changes
+// in place (setFilter, no move) is still found under the new one.
+TEST(Broadphase, CastsFollowAFilterChangedInPlace) {
+  rc::Random rng(21);
+  Twin t;
+  for (int i = 0; i < 100; ++i)
+    t.add(moving(boxAt(rng.inBox({-100, -100}, {100, 100}), {0.5f, 0.5f})));
+  const ProxyId wall = t.add(fixed(boxAt({0, 0}, {20, 1})));  // alone on its level
+  const ProxyId small = t.add(moving(boxAt({0, 10}, {0.5f, 0.5f})));
+  auto closest = [&](const rc::ProxyStore& bp, Vec2 origin, rc::ProxyFilter f) {
+    auto exact = [&](ProxyId id, const rc::RayCastInput& r) {
+      return exactCast(bp, id, r, 0, false);
+    };
+    const rc::RayCastInput in{origin, {0, -40}, 1};
+    return &bp == &t.tree ? rc::castClosest(t.tree, in, 0.0f, f, exact)
+                          : rc::castClosest(t.brute, in, 0.0f, f, exact);
+  };
+  const rc::ProxyFilter seeks4{1, 4}, seeks8{1, 8};
+  EXPECT_FALSE(closest(t.tree, {0, 20}, seeks4).out.hit);
+  for (ProxyId id : {wall, small}) {
+    t.tree.setFilter(id, {4, 0xFFFFFFFFu});
+    t.brute.setFilter(id, {4, 0xFFFFFFFFu});
+  }
+  t.tree.validate();
+  for (Vec2 origin : {Vec2{0, 20}, Vec2{0, 5}, Vec2{15, 5}}) {
+    const rc::ProxyHit h = closest(t.tree, origin, seeks4);
+    EXPECT_TRUE(h.out.hit) << origin.x << ", " << origin.y;
+    EXPECT_EQ(h.id, origin.y > 10 && origin.x == 0 ? small : wall);
+    EXPECT_TRUE(sameHit(h, closest(t.brute, origin, seeks4)));
+    EXPECT_FALSE(closest(t.tree, origin, seeks8).out.hit);
+  }
+}
+
 // Proxies as large as their cells, centred near a cell corner, stick out of their cell by
 // almost half a cell: rays that only touch that part must still find them (a traversal that
 // grows cells by less than half a cell fails here).

@@ -180,6 +180,7 @@ void Quadtree::link(ProxyId id, Tree& tree, int level, int cell) {
   }
   Level& lv = tree.levels[static_cast<std::size_t>(level)];
   ++lv.population;
+  tree.populated |= 1u << level;
   const Vec2 e = p.fat.extents();
   lv.reach = std::max(lv.reach, std::max(e.x, e.y));
   lv.categories |= p.filter.category;
@@ -202,6 +203,7 @@ void Quadtree::unlink(ProxyId id) {
   }
   Level& lv = tree.levels[static_cast<std::size_t>(k.level)];
   if (--lv.population == 0) {
+    tree.populated &= ~(1u << k.level);
     lv.reach = 0.0f;
     lv.categories = lv.masks = 0;
   }
@@ -411,6 +413,8 @@ void Quadtree::validateLists(bool fromHeads) const {
       const int pop = population[static_cast<std::size_t>(l)];
       if (pop != tree->levels[static_cast<std::size_t>(l)].population)
         fail("population of level " + std::to_string(l));
+      if (((tree->populated >> l) & 1u) != (pop > 0 ? 1u : 0u))
+        fail("populated bit of level " + std::to_string(l));
       seen += pop;
     }
   }
@@ -477,6 +481,7 @@ void Quadtree::clearAll() {
   for (Tree* tree : {&static_, &moving_}) {
     tree->outside = kNullProxy;
     tree->outsideCount = 0;
+    tree->populated = 0;
     for (Level& lv : tree->levels) {
       lv.population = 0;
       lv.reach = 0.0f;
@@ -527,6 +532,7 @@ void Quadtree::load(ByteReader& in) {
       Level& lv = tree.levels[static_cast<std::size_t>(k.level)];
       if (k.cell < 0 || k.cell >= lv.side * lv.side) in.fail("broadphase: cell out of range");
       ++lv.population;
+      tree.populated |= 1u << k.level;
       lv.categories |= p.filter.category;
       lv.masks |= p.filter.mask;
       if (k.prev == kNullProxy) {

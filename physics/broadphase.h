@@ -139,7 +139,7 @@ class SegmentProbe {
   bool clip(const AABB& box, float maxFraction, float& t0, float& t1) const;
 
  private:
-  Vec2 origin_, translation_, inverse_;
+  Vec2 origin_, inverse_;  // inverse: 1 / translation per axis, +inf where it is 0
   float radius_;
 };
 
@@ -357,31 +357,25 @@ std::vector<ProxyHit> castAll(const Broadphase& bp, const RayCastInput& in, floa
 // ---------------------------------------------------------------------------------------------
 
 inline SegmentProbe::SegmentProbe(const RayCastInput& in, float radius)
-    : origin_(in.origin), translation_(in.translation), radius_(radius) {
+    : origin_(in.origin), radius_(radius) {
   constexpr float inf = std::numeric_limits<float>::infinity();
-  inverse_ = {translation_.x != 0.0f ? 1.0f / translation_.x : inf,
-              translation_.y != 0.0f ? 1.0f / translation_.y : inf};
+  inverse_ = {in.translation.x != 0.0f ? 1.0f / in.translation.x : inf,
+              in.translation.y != 0.0f ? 1.0f / in.translation.y : inf};
 }
 
 inline bool SegmentProbe::clip(const AABB& box, float maxFraction, float& t0, float& t1) const {
-  // Slabs: on each axis the interval of t where the segment is between the box's planes.
-  t0 = 0.0f;
-  t1 = maxFraction;
-  const float lo[2] = {box.lower.x - radius_, box.lower.y - radius_};
-  const float hi[2] = {box.upper.x + radius_, box.upper.y + radius_};
-  const float o[2] = {origin_.x, origin_.y};
-  const float d[2] = {translation_.x, translation_.y};
-  const float inv[2] = {inverse_.x, inverse_.y};
-  for (int k = 0; k < 2; ++k) {
-    if (d[k] == 0.0f) {
-      if (o[k] < lo[k] || o[k] > hi[k]) return false;
-      continue;
-    }
-    float a = (lo[k] - o[k]) * inv[k], b = (hi[k] - o[k]) * inv[k];
-    if (a > b) std::swap(a, b);
-    t0 = std::max(t0, a);
-    t1 = std::min(t1, b);
-  }
+  // Slabs: on each axis the interval of t where the segment is between the box's planes, the
+  // near plane chosen by the direction's sign (no compare-and-swap per box). Along an axis the
+  // segment does not move, the inverse is infinite: a plane on either side gives -inf or +inf,
+  // a plane through the origin 0 * inf = NaN, which std::max / std::min ignore in their second
+  // argument, so the segment is in exactly when it lies between the planes, edges included.
+  const float lx = box.lower.x - radius_, hx = box.upper.x + radius_;
+  const float ly = box.lower.y - radius_, hy = box.upper.y + radius_;
+  const bool fx = inverse_.x < 0.0f, fy = inverse_.y < 0.0f;
+  t0 = std::max(std::max(0.0f, ((fx ? hx : lx) - origin_.x) * inverse_.x),
+                ((fy ? hy : ly) - origin_.y) * inverse_.y);
+  t1 = std::min(std::min(maxFraction, ((fx ? lx : hx) - origin_.x) * inverse_.x),
+                ((fy ? ly : hy) - origin_.y) * inverse_.y);
   return t0 <= t1;
 }
 

@@ -579,7 +579,9 @@ class Quadtree::CellWalk {
   template <class VisitList>
   bool visitColumn(VisitList& visitList, float maxFraction) const {
     const float out = inv_ > 0.0f ? (static_cast<float>(col_) + 1.0f + h_ - om_) * inv_ : kNever;
-    const float tB = std::min(out, std::min(end_, maxFraction));
+    // out last: a denormal rate's infinite inverse can make it 0 * inf = NaN, which std::min
+    // ignores in its second argument only.
+    const float tB = std::min(std::min(end_, maxFraction), out);
     const int r0 = std::max(-floorNear(std::min(1.0f + h_ - on_ - next_ * dn_, 1.0f)), 0);
     const int r1 =
         std::min(floorNear(std::min(on_ + tB * dn_ + h_, static_cast<float>(side_))), side_ - 1);

@@ -380,6 +380,19 @@ TEST(Broadphase, CastEdgeCases) {
         ASSERT_TRUE(sameHit(a[k], b[k])) << "radius " << radius << " cast " << q << " hit " << k;
     }
   }
+  // Translations too small to invert (denormal: the inverse is infinite), run far past them.
+  for (Vec2 tiny : {Vec2{1e-39f, 0}, Vec2{-1e-39f, 3e-39f}, Vec2{0, -2e-39f}}) {
+    const rc::RayCastInput in{{0.25f, -0.5f}, tiny, 1e30f};
+    const auto a = rc::castAll(t.tree, in, 0.5f, {}, [&](ProxyId id, const rc::RayCastInput& r) {
+      return exactCast(t.tree, id, r, 0.5f, true);
+    });
+    const auto b = rc::castAll(t.brute, in, 0.5f, {}, [&](ProxyId id, const rc::RayCastInput& r) {
+      return exactCast(t.brute, id, r, 0.5f, true);
+    });
+    ASSERT_EQ(a.size(), b.size()) << tiny.x << ", " << tiny.y;
+    for (std::size_t k = 0; k < a.size(); ++k)
+      ASSERT_TRUE(sameHit(a[k], b[k])) << tiny.x << ", " << tiny.y << " hit " << k;
+  }
   const float nan = std::numeric_limits<float>::quiet_NaN();
   auto none = [](ProxyId, const rc::RayCastInput& r) { return r.maxFraction; };
   EXPECT_THROW(t.tree.cast({{nan, 0}, {1, 0}, 1}, 0.0f, {}, none), rc::InvalidProxy);

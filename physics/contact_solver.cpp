@@ -357,9 +357,17 @@ RC_INLINE void solveBatch(Batch<N>& c, SolverBody* bodies, const ContactSoftness
     const F block0 = select(bothPush, both0, select(firstPushes, first0, F{}));
     const F block1 =
         select(bothPush, both1, select(firstPushes, F{}, select(secondPushes, second1, F{})));
-    setNormal(c, v, p0, select(useBlock, block0, alone(p0, vn0, regime[0])));
-    setNormal(c, v, p1,
-              select(useBlock, block1, alone(p1, v.along(c.nx, c.ny, p1.rnA, p1.rnB), regime[1])));
+    if (simd::allLanes(useBlock)) {
+      // Every lane solved both points at once (a resting pile's usual case): the one-at-a-time
+      // fallback, computed only to be discarded, is skipped.
+      setNormal(c, v, p0, block0);
+      setNormal(c, v, p1, block1);
+    } else {
+      setNormal(c, v, p0, select(useBlock, block0, alone(p0, vn0, regime[0])));
+      setNormal(
+          c, v, p1,
+          select(useBlock, block1, alone(p1, v.along(c.nx, c.ny, p1.rnA, p1.rnB), regime[1])));
+    }
   }
 
   // Coulomb friction, bounded by each point's normal impulse.

@@ -60,6 +60,14 @@ template <class Mask, class V>
   return __builtin_bit_cast(V,
                             (m & __builtin_bit_cast(Mask, a)) | (~m & __builtin_bit_cast(Mask, b)));
 }
+// Whether every lane of a mask (each lane 0 or all ones) is set.
+template <class Mask>
+[[gnu::always_inline]] inline bool allLanes(Mask m) {
+  std::int32_t all = -1;
+  for (std::size_t i = 0; i < sizeof(Mask) / sizeof(std::int32_t); ++i)
+    all &= m[i];
+  return all == -1;
+}
 template <class V>
 [[gnu::always_inline]] inline V vmax(V a, V b) {
   return a > b ? a : b;

@@ -5,6 +5,7 @@
 // register in a function compiled for AVX2 (see contact_solver.cpp) and two four-lane halves
 // anywhere else.
 #include <bit>
+#include <cstddef>
 #include <cstdint>
 
 #include "physics/math.h"

@@ -178,13 +178,18 @@ void Quadtree::link(ProxyId id, Tree& tree, int level, int cell) {
     ++tree.outsideCount;
     return;
   }
+  Level& lv = countOn(tree, level, p.filter);
+  const Vec2 e = p.fat.extents();
+  lv.reach = std::max(lv.reach, std::max(e.x, e.y));
+}
+
+Quadtree::Level& Quadtree::countOn(Tree& tree, int level, ProxyFilter filter) {
   Level& lv = tree.levels[static_cast<std::size_t>(level)];
   ++lv.population;
   tree.populated |= 1u << level;
-  const Vec2 e = p.fat.extents();
-  lv.reach = std::max(lv.reach, std::max(e.x, e.y));
-  lv.categories |= p.filter.category;
-  lv.masks |= p.filter.mask;
+  lv.categories |= filter.category;
+  lv.masks |= filter.mask;
+  return lv;
 }
 
 void Quadtree::unlink(ProxyId id) {
@@ -531,10 +536,7 @@ void Quadtree::load(ByteReader& in) {
       if (k.level < 0 || k.level > maxDepth_) in.fail("broadphase: level out of range");
       Level& lv = tree.levels[static_cast<std::size_t>(k.level)];
       if (k.cell < 0 || k.cell >= lv.side * lv.side) in.fail("broadphase: cell out of range");
-      ++lv.population;
-      tree.populated |= 1u << k.level;
-      lv.categories |= p.filter.category;
-      lv.masks |= p.filter.mask;
+      countOn(tree, k.level, p.filter);
       if (k.prev == kNullProxy) {
         if (lv.heads.empty())
           lv.heads.assign(static_cast<std::size_t>(lv.side) * lv.side, kNullProxy);

@@ -300,6 +300,9 @@ class Quadtree : public ProxyStore {
   void clearAll();
   void validateLists(bool fromHeads) const;
   void link(ProxyId id, Tree& tree, int level, int cell);
+  // One more proxy on a level: its population, the tree's populated bit, the filter unions
+  // (link, and load, which reads the reach instead of growing it).
+  static Level& countOn(Tree& tree, int level, ProxyFilter filter);
   ProxyId& headOf(Tree& tree, int level, int cell);
   Tree& treeOf(const ProxyData& p) { return p.isStatic ? static_ : moving_; }
   const Tree& treeOf(const ProxyData& p) const { return p.isStatic ? static_ : moving_; }
@@ -436,7 +439,7 @@ bool Quadtree::queryTree(const Tree& tree, const AABB& box, Visit& visit) const 
   for (std::uint32_t bits = tree.populated; bits != 0; bits &= bits - 1) {
     const Level& level = tree.levels[static_cast<std::size_t>(std::countr_zero(bits))];
     // Cells whose bounds grown by the level's reach overlap the box.
-    const float inv = 1.0f / level.cellSize;
+    const float inv = level.invCellSize;
     const float half = level.queryMargin();
     auto index = [&](float v) {
       float f = std::floor(v * inv);

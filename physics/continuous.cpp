@@ -266,7 +266,7 @@ void WorldState::continuous() {
       // that the contact let it come) while a force drove its centre in was held step after step,
       // falling along the wall at 280 m/s standing still; and a long body spinning a corner into
       // the floor slid along it at 140 m/s standing still.
-      if (hitBody < 0 && (first == 0.0f || !(heldOff == Vec2{}))) {
+      if (hitBody < 0 && (first == 0.0f || heldOff != Vec2{})) {
         const std::size_t i = 3 * static_cast<std::size_t>(b.slot);
         const float closing = v_[i] * heldOff.x + v_[i + 1] * heldOff.y;
         if (closing > 0.0f) {

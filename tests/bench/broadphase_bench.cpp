@@ -241,6 +241,19 @@ void fillOurs(Broadphase& bp, const Arena& a) {
 }
 
 // Proxy ids 0..3 are the walls (not hit by the exact test), then the circles in order.
+// Every ray of the scene through cast(in), which returns whether it hit: time per cast, and
+// the hit rate as a counter.
+template <class Cast>
+void castEach(benchmark::State& state, const QueryScene& q, Cast&& cast) {
+  double hits = 0;
+  for (auto _ : state)
+    for (const rc::RayCastInput& in : q.rays)
+      hits += cast(in);
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(q.rays.size()));
+  state.counters["hit_rate"] =
+      hits / static_cast<double>(state.iterations() * static_cast<std::int64_t>(q.rays.size()));
+}
+
 template <class Broadphase>
 void raysOurs(benchmark::State& state, const QueryScene& q, const Broadphase& bp) {
   const auto& centres = q.arena.positions[0];
@@ -249,17 +262,11 @@ void raysOurs(benchmark::State& state, const QueryScene& q, const Broadphase& bp
     if (static_cast<std::size_t>(id) < walls) return rc::CastOutput{};
     return rc::rayCast(rc::Circle{centres[static_cast<std::size_t>(id) - walls], kRadius}, in);
   };
-  double hits = 0;
-  for (auto _ : state) {
-    for (const rc::RayCastInput& in : q.rays) {
-      rc::ProxyHit h = rc::castClosest(bp, in, 0.0f, {}, exact);
-      hits += h.out.hit;
-      benchmark::DoNotOptimize(h);
-    }
-  }
-  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(q.rays.size()));
-  state.counters["hit_rate"] =
-      hits / static_cast<double>(state.iterations() * static_cast<std::int64_t>(q.rays.size()));
+  castEach(state, q, [&](const rc::RayCastInput& in) {
+    rc::ProxyHit h = rc::castClosest(bp, in, 0.0f, {}, exact);
+    benchmark::DoNotOptimize(h);
+    return h.out.hit;
+  });
 }
 
 struct Box2DTreeScene {
@@ -297,23 +304,17 @@ struct Box2DClosest {
 };
 
 void raysBox2D(benchmark::State& state, const QueryScene& q, const Box2DTreeScene& s) {
-  double hits = 0;
-  for (auto _ : state) {
-    for (const rc::RayCastInput& in : q.rays) {
-      Box2DClosest cb{&s.tree, b2Transform(), 1.0f, false};
-      cb.identity.SetIdentity();
-      b2RayCastInput input;
-      input.p1.Set(in.origin.x, in.origin.y);
-      input.p2.Set(in.origin.x + in.translation.x, in.origin.y + in.translation.y);
-      input.maxFraction = 1.0f;
-      s.tree.RayCast(&cb, input);
-      hits += cb.hit;
-      benchmark::DoNotOptimize(cb.best);
-    }
-  }
-  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(q.rays.size()));
-  state.counters["hit_rate"] =
-      hits / static_cast<double>(state.iterations() * static_cast<std::int64_t>(q.rays.size()));
+  castEach(state, q, [&](const rc::RayCastInput& in) {
+    Box2DClosest cb{&s.tree, b2Transform(), 1.0f, false};
+    cb.identity.SetIdentity();
+    b2RayCastInput input;
+    input.p1.Set(in.origin.x, in.origin.y);
+    input.p2.Set(in.origin.x + in.translation.x, in.origin.y + in.translation.y);
+    input.maxFraction = 1.0f;
+    s.tree.RayCast(&cb, input);
+    benchmark::DoNotOptimize(cb.best);
+    return cb.hit;
+  });
 }
 
 // The query scene as worlds: each circle a static body, the walls static boxes in category 2,
@@ -337,17 +338,11 @@ std::unique_ptr<rc::World> worldOurs(const QueryScene& q) {
 
 void raysWorldOurs(benchmark::State& state, const QueryScene& q, const rc::World& w) {
   const rc::QueryFilter filter(rc::ProxyFilter{1, ~kWallCategory});
-  double hits = 0;
-  for (auto _ : state) {
-    for (const rc::RayCastInput& in : q.rays) {
-      const auto h = w.castRay(in.origin, in.translation, filter);
-      hits += h.has_value();
-      benchmark::DoNotOptimize(h);
-    }
-  }
-  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(q.rays.size()));
-  state.counters["hit_rate"] =
-      hits / static_cast<double>(state.iterations() * static_cast<std::int64_t>(q.rays.size()));
+  castEach(state, q, [&](const rc::RayCastInput& in) {
+    const auto h = w.castRay(in.origin, in.translation, filter);
+    benchmark::DoNotOptimize(h);
+    return h.has_value();
+  });
 }
 
 std::unique_ptr<b2World> worldBox2D(const QueryScene& q) {
@@ -385,19 +380,13 @@ struct Box2DWorldClosest : b2RayCastCallback {
 };
 
 void raysWorldBox2D(benchmark::State& state, const QueryScene& q, const b2World& w) {
-  double hits = 0;
-  for (auto _ : state) {
-    for (const rc::RayCastInput& in : q.rays) {
-      Box2DWorldClosest cb;
-      w.RayCast(&cb, b2Vec2(in.origin.x, in.origin.y),
-                b2Vec2(in.origin.x + in.translation.x, in.origin.y + in.translation.y));
-      hits += cb.hit;
-      benchmark::DoNotOptimize(cb.best);
-    }
-  }
-  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(q.rays.size()));
-  state.counters["hit_rate"] =
-      hits / static_cast<double>(state.iterations() * static_cast<std::int64_t>(q.rays.size()));
+  castEach(state, q, [&](const rc::RayCastInput& in) {
+    Box2DWorldClosest cb;
+    w.RayCast(&cb, b2Vec2(in.origin.x, in.origin.y),
+              b2Vec2(in.origin.x + in.translation.x, in.origin.y + in.translation.y));
+    benchmark::DoNotOptimize(cb.best);
+    return cb.hit;
+  });
 }
 
 template <class Broadphase>

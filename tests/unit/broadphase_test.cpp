@@ -76,6 +76,26 @@ struct Twin {
     live.erase(live.begin() + static_cast<std::ptrdiff_t>(index));
     std::erase_if(kept, [&](const rc::ProxyPair& p) { return p.a == id || p.b == id; });
   }
+  // Every hit of one cast through the tree and through brute force (exactCast's shapes): the
+  // same hits in the same order. `hits` (if given) gets the tree's.
+  ::testing::AssertionResult sameCastAll(const rc::RayCastInput& in, float radius, bool disc,
+                                         rc::ProxyFilter filter = {},
+                                         std::vector<rc::ProxyHit>* hits = nullptr) const {
+    const auto a =
+        rc::castAll(tree, in, radius, filter, [&](ProxyId id, const rc::RayCastInput& r) {
+          return exactCast(tree, id, r, radius, disc);
+        });
+    const auto b =
+        rc::castAll(brute, in, radius, filter, [&](ProxyId id, const rc::RayCastInput& r) {
+          return exactCast(brute, id, r, radius, disc);
+        });
+    if (hits != nullptr) *hits = a;
+    if (a.size() != b.size())
+      return ::testing::AssertionFailure() << a.size() << " hits, brute force " << b.size();
+    for (std::size_t k = 0; k < a.size(); ++k)
+      if (!sameHit(a[k], b[k])) return ::testing::AssertionFailure() << "hit " << k << " differs";
+    return ::testing::AssertionSuccess();
+  }
   void move(ProxyId id, const AABB& box, Vec2 displacement = {}) {
     EXPECT_EQ(tree.moveProxy(id, box, displacement), brute.moveProxy(id, box, displacement));
   }
@@ -145,11 +165,8 @@ struct Twin {
     rc::ProxyHit cb = rc::castClosest(brute, in, radius, f, exactBrute);
     ASSERT_TRUE(sameHit(ct, cb)) << what << ": closest " << ct.id << " at " << ct.out.fraction
                                  << ", brute force " << cb.id << " at " << cb.out.fraction;
-    std::vector<rc::ProxyHit> at = rc::castAll(tree, in, radius, f, exactTree);
-    std::vector<rc::ProxyHit> ab = rc::castAll(brute, in, radius, f, exactBrute);
-    ASSERT_EQ(at.size(), ab.size()) << what;
-    for (std::size_t i = 0; i < at.size(); ++i)
-      ASSERT_TRUE(sameHit(at[i], ab[i])) << what << " hit " << i;
+    std::vector<rc::ProxyHit> at;
+    ASSERT_TRUE(sameCastAll(in, radius, disc, f, &at)) << what;
     // And the brute force against a plain loop over the live proxies, no broadphase at all.
     rc::ProxyHit best;
     for (ProxyId id : live) {
@@ -367,31 +384,13 @@ TEST(Broadphase, CastEdgeCases) {
     for (int q = 0; q < 10; ++q) {
       const rc::RayCastInput in{rng.inBox({-300, -300}, {300, 300}),
                                 rng.inBox({-50, -50}, {50, 50}), q % 2 == 0 ? 1.0f : 1e30f};
-      const auto a =
-          rc::castAll(t.tree, in, radius, {}, [&](ProxyId id, const rc::RayCastInput& r) {
-            return exactCast(t.tree, id, r, radius, true);
-          });
-      const auto b =
-          rc::castAll(t.brute, in, radius, {}, [&](ProxyId id, const rc::RayCastInput& r) {
-            return exactCast(t.brute, id, r, radius, true);
-          });
-      ASSERT_EQ(a.size(), b.size()) << "radius " << radius << " cast " << q;
-      for (std::size_t k = 0; k < a.size(); ++k)
-        ASSERT_TRUE(sameHit(a[k], b[k])) << "radius " << radius << " cast " << q << " hit " << k;
+      ASSERT_TRUE(t.sameCastAll(in, radius, true)) << "radius " << radius << " cast " << q;
     }
   }
   // Translations too small to invert (denormal: the inverse is infinite), run far past them.
   for (Vec2 tiny : {Vec2{1e-39f, 0}, Vec2{-1e-39f, 3e-39f}, Vec2{0, -2e-39f}}) {
     const rc::RayCastInput in{{0.25f, -0.5f}, tiny, 1e30f};
-    const auto a = rc::castAll(t.tree, in, 0.5f, {}, [&](ProxyId id, const rc::RayCastInput& r) {
-      return exactCast(t.tree, id, r, 0.5f, true);
-    });
-    const auto b = rc::castAll(t.brute, in, 0.5f, {}, [&](ProxyId id, const rc::RayCastInput& r) {
-      return exactCast(t.brute, id, r, 0.5f, true);
-    });
-    ASSERT_EQ(a.size(), b.size()) << tiny.x << ", " << tiny.y;
-    for (std::size_t k = 0; k < a.size(); ++k)
-      ASSERT_TRUE(sameHit(a[k], b[k])) << tiny.x << ", " << tiny.y << " hit " << k;
+    ASSERT_TRUE(t.sameCastAll(in, 0.5f, true)) << tiny.x << ", " << tiny.y;
   }
   const float nan = std::numeric_limits<float>::quiet_NaN();
   auto none = [](ProxyId, const rc::RayCastInput& r) { return r.maxFraction; };
@@ -463,18 +462,9 @@ TEST(Broadphase, CastsFindProxiesStickingOutOfTheirCells) {
         {{fat.lower.x - 2, fat.lower.y + 2.002f}, {4, -4}, 1},  // across the corner
     };
     for (const rc::RayCastInput& in : rays) {
-      std::vector<rc::ProxyHit> a =
-          rc::castAll(t.tree, in, 0.0f, {}, [&](ProxyId id, const rc::RayCastInput& r) {
-            return exactCast(t.tree, id, r, 0, false);
-          });
-      std::vector<rc::ProxyHit> b =
-          rc::castAll(t.brute, in, 0.0f, {}, [&](ProxyId id, const rc::RayCastInput& r) {
-            return exactCast(t.brute, id, r, 0, false);
-          });
-      ASSERT_EQ(a.size(), b.size()) << "proxy " << i;
-      for (std::size_t k = 0; k < a.size(); ++k)
-        ASSERT_TRUE(sameHit(a[k], b[k])) << "proxy " << i << " hit " << k;
-      hits += static_cast<int>(a.size());
+      std::vector<rc::ProxyHit> found;
+      ASSERT_TRUE(t.sameCastAll(in, 0.0f, false, {}, &found)) << "proxy " << i;
+      hits += static_cast<int>(found.size());
     }
   }
   EXPECT_GE(hits, 5 * 300);  // every ray hits at least the proxy it was aimed at

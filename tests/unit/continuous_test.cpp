@@ -144,20 +144,25 @@ TEST(World, FastBallKeepsBouncingBetweenWalls) {
   }
 }
 
+// The rigs' worlds (no gravity) and materials.
+rc::WorldDef weightless(bool sleep) {
+  rc::WorldDef def;
+  def.gravity = {0, 0};
+  def.enableSleep = sleep;
+  return def;
+}
+rc::ShapeDef material(float friction, float restitution) {
+  rc::ShapeDef d;
+  d.friction = friction;
+  d.restitution = restitution;
+  return d;
+}
+
 // The stress suite's arenas (the bullets case, the soak): no gravity, every shape with
 // restitution 0.5 and friction 0.2.
 struct ArenaRig {
-  rc::World w{[] {
-    rc::WorldDef def;
-    def.gravity = {0, 0};
-    return def;
-  }()};
-  rc::ShapeDef sd = [] {
-    rc::ShapeDef d;
-    d.restitution = 0.5f;
-    d.friction = 0.2f;
-    return d;
-  }();
+  rc::World w{weightless(true)};
+  rc::ShapeDef sd = material(0.2f, 0.5f);
 };
 
 // A bullet resting against a wall, fired at a ball wedged against the same wall, is deflected
@@ -199,18 +204,8 @@ TEST(World, BulletDeflectedIntoAWallStaysOut) {
 // The struck-into-a-wall tests' world: no gravity, no sleeping, a static wall 1 cm thick whose
 // lower face is y = 10, every shape frictionless and perfectly elastic (sd).
 struct WallRig {
-  rc::World w{[] {
-    rc::WorldDef def;
-    def.gravity = {0, 0};
-    def.enableSleep = false;
-    return def;
-  }()};
-  rc::ShapeDef sd = [] {
-    rc::ShapeDef d;
-    d.friction = 0.0f;
-    d.restitution = 1.0f;
-    return d;
-  }();
+  rc::World w{weightless(false)};
+  rc::ShapeDef sd = material(0.0f, 1.0f);
   WallRig() { w.createShape(w.createBody({}), rc::makeBox(1000, 0.005f, {0, 10.005f}), sd); }
   // A 5 cm ball fired from `from` with `velocity`.
   BodyId strike(Vec2 from, Vec2 velocity, bool bullet = false) {

@@ -440,7 +440,7 @@ template <int N>
 void layoutBatches(std::span<const ConstraintBodies> constraints,
                    std::span<const std::int32_t> colour, const int (&perColour)[kColours + 1],
                    int bodyCount, std::vector<Batch<N>>& batches,
-                   std::vector<std::int32_t>& constraintLane) {
+                   std::vector<std::int32_t>& constraintLane, std::vector<std::int32_t>& partial) {
   int firstBatch[kColours + 2] = {};
   for (int k = 0; k < kColours; ++k)
     firstBatch[k + 1] = firstBatch[k] + (perColour[k] + N - 1) / N;
@@ -457,11 +457,13 @@ void layoutBatches(std::span<const ConstraintBodies> constraints,
   }
   // The batches with an empty lane: a colour's last when its count is not a multiple of N,
   // and every overflow batch (one lane taken).
+  partial.clear();
   for (int k = 0; k < kColours; ++k)
-    if (perColour[k] % N != 0)
-      batches[static_cast<std::size_t>(firstBatch[k + 1] - 1)] = Batch<N>{};
-  for (std::size_t bi = static_cast<std::size_t>(firstBatch[kColours]); bi < batchCount; ++bi)
-    batches[bi] = Batch<N>{};
+    if (perColour[k] % N != 0) partial.push_back(firstBatch[k + 1] - 1);
+  for (int bi = firstBatch[kColours]; bi < firstBatch[kColours + 1]; ++bi)
+    partial.push_back(bi);
+  for (const std::int32_t bi : partial)
+    batches[static_cast<std::size_t>(bi)] = Batch<N>{};
   for (Batch<N>& b : batches) {
     b.points = 1;
     std::fill(std::begin(b.a), std::end(b.a), bodyCount);
@@ -474,6 +476,21 @@ void layoutBatches(std::span<const ConstraintBodies> constraints,
     b.a[l] = cb.slotA >= 0 ? cb.slotA : bodyCount;
     b.b[l] = cb.slotB >= 0 ? cb.slotB : bodyCount;
     b.points = std::max(b.points, cb.pointCount);
+  }
+}
+
+// The batches with an empty lane back to how layoutBatches left them: zeros but for each lane's
+// bodies and the point count. The solve leaves an empty lane's impulses zero, but with either
+// sign; a layout used again starts from the same bits as a new one.
+template <int N>
+void clearPartial(std::vector<Batch<N>>& batches, std::span<const std::int32_t> partial) {
+  for (const std::int32_t bi : partial) {
+    Batch<N>& b = batches[static_cast<std::size_t>(bi)];
+    Batch<N> fresh{};
+    std::copy(std::begin(b.a), std::end(b.a), std::begin(fresh.a));
+    std::copy(std::begin(b.b), std::end(b.b), std::begin(fresh.b));
+    fresh.points = b.points;
+    b = fresh;
   }
 }
 
@@ -605,7 +622,12 @@ struct ContactSolver::Data {
   std::vector<std::int32_t> constraintLane;  // per constraint: batch * lanes + lane
   std::vector<std::uint32_t> bodyColours;    // per body: the colours its constraints took
   std::vector<std::int32_t> colour;          // per constraint: its colour, kColours: overflow
+  std::vector<std::int32_t> partial;         // the batches with an empty lane
   int colours = 0, overflow = 0;
+  // What the layout was made for: the same constraints again (a resting pile's, step after
+  // step) take the same colours and lanes, so the layout is kept.
+  std::vector<ConstraintBodies> laidOut;
+  int laidOutBodies = -1;
 };
 
 namespace {
@@ -640,9 +662,21 @@ int ContactSolver::widestLanes() {
   return simd::avx2Enabled() ? 8 : 4;
 }
 
-void ContactSolver::prepare(std::span<const ConstraintBodies> constraints, int bodyCount,
+bool ContactSolver::prepare(std::span<const ConstraintBodies> constraints, int bodyCount,
                             int maxLanes) {
   Data& d = *data_;
+  const int lanes = maxLanes >= 8 ? widestLanes() : 4;
+  if (lanes == d.lanes && bodyCount == d.laidOutBodies &&
+      std::equal(constraints.begin(), constraints.end(), d.laidOut.begin(), d.laidOut.end())) {
+    if (lanes == 8) {
+      clearPartial(d.batches8, d.partial);
+    } else {
+      clearPartial(d.batches4, d.partial);
+    }
+    return true;
+  }
+  d.laidOut.assign(constraints.begin(), constraints.end());
+  d.laidOutBodies = bodyCount;
   // Greedy colouring in constraint order: each takes the lowest colour neither of its moving
   // bodies has yet.
   const std::size_t n = constraints.size();
@@ -670,12 +704,15 @@ void ContactSolver::prepare(std::span<const ConstraintBodies> constraints, int b
     d.colours += perColour[k] > 0;
   d.overflow = perColour[kColours];
 
-  d.lanes = maxLanes >= 8 ? widestLanes() : 4;
+  d.lanes = lanes;
   if (d.lanes == 8) {
-    layoutBatches<8>(constraints, d.colour, perColour, bodyCount, d.batches8, d.constraintLane);
+    layoutBatches<8>(constraints, d.colour, perColour, bodyCount, d.batches8, d.constraintLane,
+                     d.partial);
   } else {
-    layoutBatches<4>(constraints, d.colour, perColour, bodyCount, d.batches4, d.constraintLane);
+    layoutBatches<4>(constraints, d.colour, perColour, bodyCount, d.batches4, d.constraintLane,
+                     d.partial);
   }
+  return false;
 }
 
 void ContactSolver::set(std::size_t i, const ContactConstraint& constraint) {

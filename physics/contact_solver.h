@@ -57,6 +57,7 @@ struct ConstraintBodies {
   std::int32_t slotA, slotB;
   bool movesA, movesB;
   int pointCount;
+  bool operator==(const ConstraintBodies&) const = default;
 };
 
 // A point's results after the solve.
@@ -99,7 +100,9 @@ class ContactSolver {
   // slotB; the solver bodies passed to the calls below have one more entry at the end, the null
   // body (zero velocity, no motion), which static bodies and empty lanes point at.
   // maxLanes (4 or 8) caps the batch width: 8 is taken only where the processor has AVX2.
-  void prepare(std::span<const ConstraintBodies> constraints, int bodyCount, int maxLanes);
+  // The same constraints as last time (a resting pile's, step after step) keep their layout:
+  // returns true then.
+  bool prepare(std::span<const ConstraintBodies> constraints, int bodyCount, int maxLanes);
   // Constraint i (in prepare's order), what the caller sets of it (see ConstraintPoint):
   // straight into the batch's lanes, with no array of constraints in between (copying one and
   // repacking it was a sixth of a pyramid's step).

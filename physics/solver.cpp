@@ -91,6 +91,7 @@ void WorldState::prepareContacts() {
   bouncyIndex_.clear();
   tracked_.clear();
   profile_.colours = profile_.overflow = 0;
+  profile_.layoutKept = false;
   // The last step's overlap counts back to zero (only the slots it counted: clearing every
   // slot each step was a memset of the awake bodies).
   for (const std::int32_t slot : overlapping_)
@@ -131,7 +132,8 @@ void WorldState::prepareContacts() {
       }
     }
   }
-  contactSolver_.prepare(constraintBodies_, awakeCount_, def_.maxSolverLanes);
+  profile_.layoutKept =
+      contactSolver_.prepare(constraintBodies_, awakeCount_, def_.maxSolverLanes);
   profile_.colours = contactSolver_.colourCount();
   profile_.overflow = contactSolver_.overflowCount();
   profile_.lanes = contactSolver_.laneCount();

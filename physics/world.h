@@ -215,6 +215,8 @@ struct Profile {
   // because a body had more contacts than there are colours.
   int colours = 0, overflow = 0;
   int lanes = 0;  // constraints solved side by side: 4 or 8 (0 before the first solve)
+  // The same constraints as the step before (a resting pile's): their colouring and lanes kept.
+  bool layoutKept = false;
   // The last narrowphase: touching contacts whose manifold was recycled (contactRecycleDistance)
   // and those made again.
   int recycled = 0, made = 0;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -160,6 +161,38 @@ TEST(Snapshot, Synctest) {
     w.step(kStep);
     ASSERT_EQ(w.stateHash(), once) << "step " << k + 1;
   }
+}
+
+// A resting pile's constraints are the same step after step, and the solver keeps their colouring
+// and lanes instead of laying them out again: every step must give the bits a solver laying them
+// out anew gives (a new world restored from the step before's snapshot).
+TEST(Snapshot, KeptSolverLayoutGivesTheBitsOfANewOne) {
+  rc::WorldDef def;
+  def.enableSleep = false;
+  auto pyramid = [&def] {
+    auto w = std::make_unique<rc::World>(def);
+    w->createShape(w->createBody({}), rc::makeBox(20, 0.5f, {0, -0.5f}));
+    for (int row = 0; row < 8; ++row)
+      for (int i = 0; i < 8 - row; ++i) {
+        const float x = static_cast<float>(i) - 0.5f * static_cast<float>(7 - row);
+        w->createShape(w->createBody(dynamicAt({x, 0.5f + static_cast<float>(row)})),
+                       rc::makeBox(0.5f, 0.5f));
+      }
+    return w;
+  };
+  const std::unique_ptr<rc::World> kept = pyramid();
+  int keptSteps = 0;
+  for (int k = 0; k < 180; ++k) {
+    const rc::WorldSnapshot before = kept->snapshot();
+    kept->step(kStep);
+    keptSteps += kept->profile().layoutKept;
+    const std::unique_ptr<rc::World> fresh = pyramid();
+    fresh->restore(before);
+    fresh->step(kStep);
+    ASSERT_FALSE(fresh->profile().layoutKept);
+    ASSERT_EQ(fresh->stateHash(), kept->stateHash()) << "step " << k + 1;
+  }
+  EXPECT_GT(keptSteps, 120);  // the pile settles within the first second
 }
 
 // Events are state the game reads after a restore, and ends made by destroying between steps

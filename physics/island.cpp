@@ -45,6 +45,7 @@ void WorldState::updateSleep(float dt) {
   // at rest. (A load resting on a soft contact deeper than the slop, which is where it
   // settles, does not drift, and sleeps; the average lets a settled stack's jitter, which
   // cancels, through.)
+  bool anyReady = false;  // a body still for timeToSleep: without one, no island sleeps
   for (std::size_t s = 0; s < n; ++s) {
     Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
     const float v2 = v_[3 * s] * v_[3 * s] + v_[3 * s + 1] * v_[3 * s + 1];
@@ -67,12 +68,20 @@ void WorldState::updateSleep(float dt) {
       from[0] = q_[3 * s];
       from[1] = q_[3 * s + 1];
     }
+    anyReady = anyReady || b.sleepTime >= def_.timeToSleep;
   }
-  if (n == 0) return;
+  // An island sleeps when its stillest-for-shortest body has been still for timeToSleep; the
+  // islands are not looked for while no body has (a settling pile's first second: the island
+  // pass over every contact was a tenth of its step).
+  if (!anyReady) return;
   // Islands: awake dynamic bodies joined by touching contacts (union-find over slots).
   islandParent_.resize(n);
   for (std::size_t s = 0; s < n; ++s)
     islandParent_[s] = static_cast<std::int32_t>(s);
+  // Union by size, so that no tree grows deep (which body is an island's root does not matter:
+  // islands are numbered and filled in slot order below).
+  std::vector<std::int32_t>& size = islandSize_;
+  size.assign(n, 1);
   auto root = [&](std::int32_t x) {
     while (islandParent_[static_cast<std::size_t>(x)] != x) {
       islandParent_[static_cast<std::size_t>(x)] =
@@ -110,7 +119,12 @@ void WorldState::updateSleep(float dt) {
       if (db) still[static_cast<std::size_t>(b.slot)] = 0.0f;
     }
     if (da && db) {
-      islandParent_[static_cast<std::size_t>(root(a.slot))] = root(b.slot);
+      auto ra = static_cast<std::size_t>(root(a.slot)), rb = static_cast<std::size_t>(root(b.slot));
+      if (ra != rb) {
+        if (size[ra] > size[rb]) std::swap(ra, rb);
+        islandParent_[ra] = static_cast<std::int32_t>(rb);
+        size[rb] += size[ra];
+      }
     } else if (da != db) {
       const Body& other = da ? b : a;
       if (other.type == BodyType::kinematicBody && awake(other)) {

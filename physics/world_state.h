@@ -319,6 +319,7 @@ class WorldState {
   std::vector<std::vector<std::int32_t>> islands_;  // sleeping islands: their bodies
   std::vector<std::int32_t> freeIslands_;
   std::vector<std::int32_t> islandParent_;  // union-find over awake slots, per step
+  std::vector<std::int32_t> islandSize_;    // the union-find's tree sizes
   IntegratorScratch<float, double> scratch_;
   std::vector<ProxyPair> newPairs_;
   // Bodies created, moved or given a velocity since the last step: their proxies are stretched

@@ -732,24 +732,6 @@ SolvedPoint ContactSolver::solved(std::size_t i, int point) const {
   });
 }
 
-void ContactSolver::impulses(std::span<SolvedImpulses> out) const {
-  const Data& d = *data_;
-  auto read = [&](const auto& batches, int lanes) {
-    for (std::size_t i = 0; i < out.size(); ++i) {
-      const auto lane = static_cast<std::size_t>(d.constraintLane[i]);
-      const auto& b = batches[lane / static_cast<std::size_t>(lanes)];
-      const auto l = lane % static_cast<std::size_t>(lanes);
-      out[i] = {{b.p[0].normalImpulse[l], b.p[1].normalImpulse[l]},
-                {b.p[0].tangentImpulse[l], b.p[1].tangentImpulse[l]}};
-    }
-  };
-  if (d.lanes == 8) {
-    read(d.batches8, 8);
-  } else {
-    read(d.batches4, 4);
-  }
-}
-
 void ContactSolver::computeMasses() {
   Data& d = *data_;
 #if RC_HAVE_AVX2_PATHS

@@ -65,12 +65,6 @@ struct SolvedPoint {
   float normalImpulse, tangentImpulse, maxNormalImpulse, relativeVelocity;
 };
 
-// A constraint's impulses after the solve, what the next step warm-starts from (a second point's
-// are undefined where the constraint has one).
-struct SolvedImpulses {
-  float normal[2], tangent[2];
-};
-
 // What the solver reads and writes of a body: its velocity, and how far it has moved and
 // turned since the constraints were prepared. 32 bytes, two vector rows.
 struct SolverBody {
@@ -133,8 +127,6 @@ class ContactSolver {
   // Point `point` of constraint i after the solve: its impulses, maxNormalImpulse and
   // relativeVelocity.
   SolvedPoint solved(std::size_t i, int point) const;
-  // Every constraint's impulses at once, in prepare's order (out: one per constraint).
-  void impulses(std::span<SolvedImpulses> out) const;
   // The whole point, derived fields included (restitution needs its lever arms and mass).
   ConstraintPoint point(std::size_t i, int point) const;
 

@@ -331,7 +331,6 @@ class WorldState {
     std::int32_t contact, bodyA, bodyB;
   };
   std::vector<ConstraintSource> constraintSources_;
-  std::vector<SolvedImpulses> solvedImpulses_;  // storeImpulses' scratch
   std::vector<ConstraintBodies> constraintBodies_;
   // Per awake slot: how many constraints overlapping past the slop when the step began move it
   // (see prepareContacts: each pushes it out at its share of the push-out speed), and the slots

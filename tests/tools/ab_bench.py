@@ -4,7 +4,8 @@
     tests/tools/ab_bench.py OLD/world_bench NEW/world_bench [--rounds 5] [--filter ours]
 
 Alternating the two (old, new, old, new, ...) spreads the machine's drift over both; each row
-prints the median CPU time per iteration of each build and new/old. Build the old one from a
+prints the median CPU time per iteration of each build, new/old of the medians, the median of
+each round's new/old (paired) and new/old of the fastest runs (min). Build the old one from a
 worktree (git worktree add /tmp/old REV) with the same preset.
 """
 import argparse
@@ -45,7 +46,11 @@ def main():
         if not new:
             continue
         a, b = statistics.median(old), statistics.median(new)
-        print("%-55s old %12.1f us  new %12.1f us  new/old %.3f" % (name, a, b, b / a))
+        # Each round's two runs are neighbours in time: their ratio cancels the host's slow
+        # drift, which moves both; the fastest runs are the least disturbed.
+        paired = statistics.median(n / o for o, n in zip(old, new))
+        print("%-55s old %12.1f us  new %12.1f us  new/old %.3f  paired %.3f  min %.3f"
+              % (name, a, b, b / a, paired, min(new) / min(old)))
     return 0
 
 

@@ -199,12 +199,13 @@ void WorldState::foresee(Manifold& m, const ShapeRecord& ra, const Transform& xf
 // solver does between substeps. Bounded by the tolerance: the points' relative motion, plus the
 // smaller body's reach times the relative turn (a corner that could come into the manifold),
 // and each body turned by no more than kTurn (the normal, fixed, is off by at most that).
-// Not for pairs moving fast enough to need foresight (the caller checks their margin), nor for
-// manifolds foreseen or moved off a coincidence (their anchors are not one point on each body).
-bool WorldState::recycle(Contact& c, const Body& a, const Body& b, Vec2 offset) const {
+// Not for pairs moving fast enough to need foresight (margin), nor for manifolds foreseen or
+// moved off a coincidence (their anchors are not one point on each body).
+bool WorldState::recycle(Contact& c, const Body& a, const Body& b, Vec2 offset,
+                         float margin) const {
   const float tolerance = def_.contactRecycleDistance;
   constexpr float kTurn = 0.02f;  // rad: cos 0.9998
-  if (!c.recyclable) return false;
+  if (!c.recyclable || margin > kSpeculativeDistance + tolerance) return false;
   const Rot dqA = invMul(c.madeQA, a.xf.q), dqB = invMul(c.madeQB, b.xf.q);
   if (std::fabs(dqA.s) > kTurn || std::fabs(dqB.s) > kTurn || dqA.c < 0.0f || dqB.c < 0.0f)
     return false;
@@ -247,20 +248,6 @@ void WorldState::narrowphase(float dt) {
     const float reach = length(r.bound.center - b.localCenter) + r.bound.radius;
     return length(Vec2{v_[i], v_[i + 1]}) + std::fabs(v_[i + 2]) * reach;
   };
-  // The same without square roots, never below it: |x| + |y| bounds a length.
-  auto reachSpeedBound = [&](const ShapeRecord& r) {
-    const Body& b = bodies_[static_cast<std::size_t>(r.body)];
-    if (b.slot < 0) return 0.0f;
-    const auto i = 3 * static_cast<std::size_t>(b.slot);
-    const Vec2 c = r.bound.center - b.localCenter;
-    const float reach = std::fabs(c.x) + std::fabs(c.y) + r.bound.radius;
-    return std::fabs(v_[i]) + std::fabs(v_[i + 1]) + std::fabs(v_[i + 2]) * reach;
-  };
-  auto marginOf = [&](const ShapeRecord& ra, const ShapeRecord& rb) {
-    return def_.continuous ? kSpeculativeDistance + dt * (reachSpeed(ra) + reachSpeed(rb))
-                           : kSpeculativeDistance;
-  };
-  const float recycleLimit = kSpeculativeDistance + def_.contactRecycleDistance;
   // Back to front: a destroyed contact is replaced by the last one, already updated.
   for (std::size_t i = contacts_.size(); i-- > 0;) {
     if (knownAsleep(i)) continue;
@@ -292,27 +279,16 @@ void WorldState::narrowphase(float dt) {
       oldIds[j] = c.manifold.points[j].id;
     const float oldNormal[2] = {c.normalImpulse[0], c.normalImpulse[1]};
     const float oldTangent[2] = {c.tangentImpulse[0], c.tangentImpulse[1]};
-    // Recycling is not for pairs moving fast enough to need foresight: a margin beyond the
-    // usual one by more than the tolerance. The bound answers for a resting pair without the
-    // margin's square roots (the factor covers the rounding of either); the margin is computed
-    // where the bound does not settle it, or the manifold is made.
-    float margin = -1.0f;
-    if (c.touching && def_.contactRecycleDistance > 0.0f) {
-      bool slow = !def_.continuous ||
-                  kSpeculativeDistance + dt * (reachSpeedBound(ra) + reachSpeedBound(rb)) <=
-                      0.999f * recycleLimit;
-      if (!slow) {
-        margin = marginOf(ra, rb);
-        slow = !(margin > recycleLimit);
-      }
-      if (slow && recycle(c, bodyA, bodyB, xfB.p)) {
-        ++profile_.recycled;
-        if (bodyA.island >= 0) wakeBody(bodyA);
-        if (bodyB.island >= 0) wakeBody(bodyB);
-        continue;
-      }
+    const float margin = def_.continuous
+                             ? kSpeculativeDistance + dt * (reachSpeed(ra) + reachSpeed(rb))
+                             : kSpeculativeDistance;
+    if (c.touching && def_.contactRecycleDistance > 0.0f &&
+        recycle(c, bodyA, bodyB, xfB.p, margin)) {
+      ++profile_.recycled;
+      if (bodyA.island >= 0) wakeBody(bodyA);
+      if (bodyB.island >= 0) wakeBody(bodyB);
+      continue;
     }
-    if (margin < 0.0f) margin = marginOf(ra, rb);
     // Constructed in place: the manifold function's result goes straight into the contact.
     // Assigned, it was built in a temporary and copied with wide loads of the narrow stores just
     // made (a store-forwarding stall, a sixth of this loop).

@@ -197,7 +197,7 @@ class WorldState {
   // ---- contacts (contact.cpp)
   void updatePairs();
   void narrowphase(float dt);
-  bool recycle(Contact& c, const Body& a, const Body& b, Vec2 offset) const;
+  bool recycle(Contact& c, const Body& a, const Body& b, Vec2 offset, float margin) const;
   void foresee(Manifold& m, const ShapeRecord& ra, const Transform& xfA, const ShapeRecord& rb,
                const Transform& xfB, float dt) const;
   // destroyed: ended by a destroy, disable or filter change, not by the shapes parting.

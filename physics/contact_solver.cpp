@@ -628,6 +628,7 @@ struct ContactSolver::Data {
   // step) take the same colours and lanes, so the layout is kept.
   std::vector<ConstraintBodies> laidOut;
   int laidOutBodies = -1;
+  std::size_t lastCount = 0;  // constraints in the last layout made
 };
 
 namespace {
@@ -675,8 +676,16 @@ bool ContactSolver::prepare(std::span<const ConstraintBodies> constraints, int b
     }
     return true;
   }
-  d.laidOut.assign(constraints.begin(), constraints.end());
-  d.laidOutBodies = bodyCount;
+  // Kept for the next step only when the count is the last layout's: a resting pile's stays
+  // put, where a moving crowd's changes nearly every step and would pay for a copy never used.
+  if (constraints.size() == d.lastCount) {
+    d.laidOut.assign(constraints.begin(), constraints.end());
+    d.laidOutBodies = bodyCount;
+  } else {
+    d.laidOut.clear();
+    d.laidOutBodies = -1;
+  }
+  d.lastCount = constraints.size();
   // Greedy colouring in constraint order: each takes the lowest colour neither of its moving
   // bodies has yet.
   const std::size_t n = constraints.size();

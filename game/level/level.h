@@ -83,8 +83,9 @@ struct LevelPickup {
 };
 
 struct LevelTrigger {
-  std::size_t object = 0;  // index in Level::objects (its sensor body)
-  std::string action;      // "kill", "exit", ...: the game decides what it means
+  std::size_t object = 0;         // index in Level::objects (its sensor body)
+  std::string action;             // "kill", "exit", "hurt", ...: the game decides what it means
+  float damagePerSecond = 10.0f;  // what a "hurt" zone takes off each actor inside
 };
 
 // A polyline of type "path": a route for bots, not geometry.

@@ -55,8 +55,8 @@ BuiltLevel buildLevel(const Level& level, rc::World& world, const LevelFilters& 
   built.spawns = level.spawns;
   built.pickups = level.pickups;
   for (const LevelTrigger& t : level.triggers)
-    built.triggers.push_back(
-        {t.object, built.bodies[t.object], t.action, level.objects[t.object].properties});
+    built.triggers.push_back({t.object, built.bodies[t.object], t.action, t.damagePerSecond,
+                              level.objects[t.object].properties});
   built.paths = level.paths;
   built.markers = level.markers;
   return built;

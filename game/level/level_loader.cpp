@@ -224,7 +224,8 @@ void loadObject(const TiledLayer& layer, const TiledObject& o, LoadState& s,
   object.shapes = std::move(placed.shapes);
   const std::size_t index = s.level.objects.size();
   if (object.kind == LevelObjectKind::trigger)
-    s.level.triggers.push_back({index, stringProperty(props, "action", "", at)});
+    s.level.triggers.push_back({index, stringProperty(props, "action", "", at),
+                                floatProperty(props, "damagePerSecond", 10.0f, 0.0f, 1e6f, at)});
   s.level.objects.push_back(std::move(object));
 }
 

@@ -1,8 +1,10 @@
 #include "game/rules/triggers.h"
 
+#include <optional>
 #include <vector>
 
 #include "game/match/actors.h"
+#include "game/match/input.h"
 #include "game/rules/damage.h"
 #include "game/rules/score.h"
 
@@ -47,6 +49,25 @@ void applyTriggers(MatchState& s) {
       exited[visitor->index] = true;
       leaveThroughExit(s, visitor->index);
     }
+  }
+  // Hurt zones act on whoever is inside now, not on who entered: a tick's worth of the zone's
+  // damage for each zone an actor overlaps (its shapes against the zone's, exactly), in actor
+  // order; dying of it is a suicide. Asked of the world each tick, so nothing is kept.
+  std::vector<bool> inside;
+  for (const BuiltTrigger& t : s.built.triggers) {
+    if (t.action != "hurt" || !(t.damagePerSecond > 0.0f)) continue;
+    inside.assign(s.actors.size(), false);
+    const rc::Transform at = s.world->transform(t.body);
+    for (const rc::ShapeId zone : s.world->shapesOf(t.body)) {
+      for (const rc::ShapeRef& r : s.world->overlapShape(s.world->shape(zone), at)) {
+        const std::optional<GameRef> actor = gameRefOf(r.bodyUserData);
+        if (actor && actor->kind == GameKind::actor && actor->index < s.actors.size())
+          inside[actor->index] = true;
+      }
+    }
+    const float perTick = t.damagePerSecond / static_cast<float>(kTicksPerSecond);
+    for (std::size_t i = 0; i < s.actors.size(); ++i)
+      if (inside[i] && s.actors[i].alive) damageActor(s, i, perTick, std::nullopt);
   }
 }
 

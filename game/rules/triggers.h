@@ -7,7 +7,9 @@
 //          an exit is an objective worth RuleTuning::exitScore points rather than the end of the
 //          match; sending the actor away makes each exit one score (standing in the zone, or
 //          stepping out and in, cannot farm it).
-// Other actions (the bundled arena's "hurt") are not rules yet and do nothing.
+//   hurt   every living actor inside loses the zone's damagePerSecond (10 unless the level says),
+//          a tick's worth each tick, for as long as it stays; dying of it is a suicide.
+// Other actions do nothing.
 #pragma once
 
 #include "game/match/match.h"

@@ -229,6 +229,18 @@ TEST_F(BadMap, UnknownLayerKindAndObjectType) {
       {{"id", 3}, {"type", "trigger"}, {"polyline", {{{"x", 0}, {"y", 0}}, {{"x", 9}, {"y", 0}}}}});
   errorOf(m, {"object 3: a polyline cannot be a trigger"});
   m = baseMap();
+  m["layers"][1]["objects"].push_back(
+      {{"id", 3},
+       {"type", "trigger"},
+       {"x", 0},
+       {"y", 0},
+       {"width", 32},
+       {"height", 32},
+       {"properties",
+        {{{"name", "action"}, {"type", "string"}, {"value", "hurt"}},
+         {{"name", "damagePerSecond"}, {"type", "float"}, {"value", -5}}}}});
+  errorOf(m, {"object 3: property 'damagePerSecond': must be from 0 to 1000000, got -5"});
+  m = baseMap();
   m["layers"][1]["objects"][1]["type"] = "pickup";
   errorOf(m, {"object 2: a pickup needs a string property 'item'"});
   m = baseMap();

@@ -164,6 +164,60 @@ TEST(Rules, KillTrigger) {
   EXPECT_NEAR(static_cast<float>(t) / game::kTicksPerSecond, 3.65f / 5.0f + 0.0625f, 0.05f);
 }
 
+// A hurt zone takes its damagePerSecond off whoever stands in it, a tick's worth a tick, nothing
+// once they step out, and dying in it is a suicide.
+TEST(Rules, HurtTriggerTakesItsDamagePerSecondWhileInside) {
+  Level level = room({-5, 0}, {});
+  game::LevelObject zone;
+  zone.kind = game::LevelObjectKind::trigger;
+  zone.position = {0, 0};
+  zone.shapes.push_back(rc::makeBox(2, 2));
+  level.objects.push_back(zone);
+  level.triggers.push_back({level.objects.size() - 1, "hurt", 24.0f});
+  Match m(level, config(0));
+  const game::Actor& player = m.state().actors[0];
+  const std::vector<PlayerInput> east{game::makeInput({1, 0}, 0, 0, 0)};
+  const std::vector<PlayerInput> west{game::makeInput({-1, 0}, 0, 0, 0)};
+  const std::vector<PlayerInput> still{game::makeInput({}, 0, 0, 0)};
+  const float full = player.health;
+  // Walk in until the centre is in the zone's middle, then stand.
+  int t = 0;
+  while (m.state().world->position(player.body).x < 0.0f && t < 300) {
+    m.tick(east);
+    ++t;
+  }
+  for (int k = 0; k < 30; ++k)
+    m.tick(still);  // coming to rest, still inside
+  ASSERT_LT(player.health, full);
+  const float before = player.health;
+  for (int k = 0; k < game::kTicksPerSecond; ++k)
+    m.tick(still);
+  EXPECT_NEAR(before - player.health, 24.0f, 1e-3f);  // one second: 60 ticks of 0.4
+  // Out (the player's 0.5 m radius clear of the zone's edge at x = -2): health stays.
+  while (m.state().world->position(player.body).x > -3.0f && t < 1000) {
+    m.tick(west);
+    ++t;
+  }
+  for (int k = 0; k < 30; ++k)
+    m.tick(still);
+  const float outside = player.health;
+  for (int k = 0; k < game::kTicksPerSecond; ++k)
+    m.tick(still);
+  EXPECT_EQ(player.health, outside);
+  // Back in and staying: dead after outside / 24 seconds more, no one credited.
+  int ticks = 0;
+  while (player.alive && ticks < 20 * game::kTicksPerSecond) {
+    m.tick(m.state().world->position(player.body).x < 0.0f ? east : still);
+    ++ticks;
+  }
+  EXPECT_FALSE(player.alive);
+  EXPECT_EQ(player.deaths, 1);
+  EXPECT_EQ(player.suicides, 1);
+  EXPECT_EQ(player.kills, 0);
+  EXPECT_GT(static_cast<float>(ticks) / game::kTicksPerSecond, outside / 24.0f);
+  EXPECT_LT(static_cast<float>(ticks) / game::kTicksPerSecond, outside / 24.0f + 1.0f);
+}
+
 // The same level, seed and inputs give the same hash at every tick; another seed another match.
 TEST(Match, SameSeedSameHashes) {
   auto run = [](std::uint64_t seed) {

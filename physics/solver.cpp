@@ -132,8 +132,7 @@ void WorldState::prepareContacts() {
       }
     }
   }
-  profile_.layoutKept =
-      contactSolver_.prepare(constraintBodies_, awakeCount_, def_.maxSolverLanes);
+  profile_.layoutKept = contactSolver_.prepare(constraintBodies_, awakeCount_, def_.maxSolverLanes);
   profile_.colours = contactSolver_.colourCount();
   profile_.overflow = contactSolver_.overflowCount();
   profile_.lanes = contactSolver_.laneCount();

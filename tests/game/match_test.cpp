@@ -141,16 +141,23 @@ TEST(Rules, DeathAndRespawnAtTheFarthestSpawn) {
   EXPECT_NEAR(back.y, 15, 0.1f);
 }
 
+// room() with the player at (-5, 0), no bots, and one trigger zone `shape` about the origin
+// (trigger.object is set here).
+Level roomWithZone(const rc::Shape& shape, game::LevelTrigger trigger) {
+  Level level = room({-5, 0}, {});
+  game::LevelObject zone;
+  zone.kind = game::LevelObjectKind::trigger;
+  zone.position = {0, 0};
+  zone.shapes.push_back(shape);
+  level.objects.push_back(zone);
+  trigger.object = level.objects.size() - 1;
+  level.triggers.push_back(trigger);
+  return level;
+}
+
 // A kill trigger zone kills whoever walks in.
 TEST(Rules, KillTrigger) {
-  Level level = room({-5, 0}, {});
-  game::LevelObject pit;
-  pit.kind = game::LevelObjectKind::trigger;
-  pit.position = {0, 0};
-  pit.shapes.push_back(rc::makeBox(1, 1));
-  level.objects.push_back(pit);
-  level.triggers.push_back({level.objects.size() - 1, "kill"});
-  Match m(level, config(0));
+  Match m(roomWithZone(rc::makeBox(1, 1), {0, "kill"}), config(0));
   const std::vector<PlayerInput> east{game::makeInput({1, 0}, 0, 0, 0)};
   int t = 0;
   while (m.state().actors[0].alive && t < 300) {
@@ -167,14 +174,7 @@ TEST(Rules, KillTrigger) {
 // A hurt zone takes its damagePerSecond off whoever stands in it, a tick's worth a tick, nothing
 // once they step out, and dying in it is a suicide.
 TEST(Rules, HurtTriggerTakesItsDamagePerSecondWhileInside) {
-  Level level = room({-5, 0}, {});
-  game::LevelObject zone;
-  zone.kind = game::LevelObjectKind::trigger;
-  zone.position = {0, 0};
-  zone.shapes.push_back(rc::makeBox(2, 2));
-  level.objects.push_back(zone);
-  level.triggers.push_back({level.objects.size() - 1, "hurt", 24.0f});
-  Match m(level, config(0));
+  Match m(roomWithZone(rc::makeBox(2, 2), {0, "hurt", 24.0f}), config(0));
   const game::Actor& player = m.state().actors[0];
   const std::vector<PlayerInput> east{game::makeInput({1, 0}, 0, 0, 0)};
   const std::vector<PlayerInput> west{game::makeInput({-1, 0}, 0, 0, 0)};

@@ -480,8 +480,8 @@ void layoutBatches(std::span<const ConstraintBodies> constraints,
 }
 
 // The batches with an empty lane back to how layoutBatches left them: zeros but for each lane's
-// bodies and the point count. The solve leaves an empty lane's impulses zero, but with either
-// sign; a layout used again starts from the same bits as a new one.
+// bodies and the point count. The solve may leave zeros of either sign in an empty lane; a
+// layout used again starts from the same bits as a new one.
 template <int N>
 void clearPartial(std::vector<Batch<N>>& batches, std::span<const std::int32_t> partial) {
   for (const std::int32_t bi : partial) {

@@ -70,9 +70,9 @@ void WorldState::updateSleep(float dt) {
     }
     anyReady = anyReady || b.sleepTime >= def_.timeToSleep;
   }
-  // An island sleeps when its stillest-for-shortest body has been still for timeToSleep; the
-  // islands are not looked for while no body has (a settling pile's first second: the island
-  // pass over every contact was a tenth of its step).
+  // An island sleeps when its stillest-for-shortest body has been still for timeToSleep: while
+  // no body has, the islands are not looked for (a crowd in motion pays this pass over its
+  // bodies, not the one over every contact below).
   if (!anyReady) return;
   // Islands: awake dynamic bodies joined by touching contacts (union-find over slots).
   islandParent_.resize(n);

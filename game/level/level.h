@@ -67,7 +67,7 @@ struct LevelSpawn {
   std::string name;
   rc::Vec2 position{};
   float facing = 0.0f;  // radians, counter-clockwise from +x
-  int team = 0;
+  int team = -1;        // the actor's team; -1: its kind's (players 0, bots 1)
   TiledProperties properties;
 };
 

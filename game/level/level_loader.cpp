@@ -105,7 +105,7 @@ void loadPoint(const TiledObject& o, const std::string& type, const TiledPropert
     spawn.name = o.name;
     spawn.position = position;
     spawn.facing = radiansFromTiled(floatProperty(props, "facing", 0.0f, -1e6f, 1e6f, at));
-    spawn.team = intProperty(props, "team", 0, 0, 255, at);
+    spawn.team = intProperty(props, "team", spawn.kind == SpawnKind::player ? 0 : 1, 0, 255, at);
     spawn.properties = props;
     s.level.spawns.push_back(std::move(spawn));
   } else if (type == "pickup") {

@@ -74,7 +74,7 @@ struct RuleTuning {
 
 struct Actor {
   ActorKind kind = ActorKind::bot;
-  int team = 0;
+  int team = 0;  // its spawn's (a level's `team`; players 0 and bots 1 where it has none)
   std::string name;
   rc::BodyId body;
   bool alive = true;

@@ -436,4 +436,35 @@ TEST(LevelFuzz, TruncatedAndCorruptedLevelsFailCleanly) {
   EXPECT_GT(loaded, 10);  // some edits land in names and leave a valid level
 }
 
+// What the loader fills in where a property is left out: a spawn's team is its kind's (players
+// 0, bots 1), a trigger's damagePerSecond 10.
+TEST_F(BadMap, DefaultsWhereAPropertyIsLeftOut) {
+  json m = baseMap();
+  m["layers"][1]["objects"].push_back(
+      {{"id", 3}, {"type", "bot"}, {"point", true}, {"x", 90}, {"y", 50}});
+  m["layers"][1]["objects"].push_back(
+      {{"id", 4},
+       {"type", "bot"},
+       {"point", true},
+       {"x", 100},
+       {"y", 50},
+       {"properties", {{{"name", "team"}, {"type", "int"}, {"value", 0}}}}});
+  m["layers"][1]["objects"].push_back(
+      {{"id", 5},
+       {"type", "trigger"},
+       {"x", 40},
+       {"y", 64},
+       {"width", 16},
+       {"height", 16},
+       {"properties", {{{"name", "action"}, {"type", "string"}, {"value", "hurt"}}}}});
+  const game::Level level = game::loadLevel(dir.write("defaults.tmj", m.dump()));
+  ASSERT_EQ(level.spawns.size(), 3u);
+  EXPECT_EQ(level.spawns[0].team, 0);  // the player
+  EXPECT_EQ(level.spawns[1].team, 1);  // a bot without a team
+  EXPECT_EQ(level.spawns[2].team, 0);  // a bot on the player's side
+  ASSERT_EQ(level.triggers.size(), 1u);
+  EXPECT_EQ(level.triggers[0].action, "hurt");
+  EXPECT_EQ(level.triggers[0].damagePerSecond, 10.0f);
+}
+
 }  // namespace level_errors_test

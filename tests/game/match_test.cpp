@@ -218,6 +218,33 @@ TEST(Rules, HurtTriggerTakesItsDamagePerSecondWhileInside) {
   EXPECT_LT(static_cast<float>(ticks) / game::kTicksPerSecond, outside / 24.0f + 1.0f);
 }
 
+// An actor's team is its spawn's: a bot spawned on the player's team never fights it, one on
+// its own team (the default for bots) does; without a team, players are 0 and bots 1.
+TEST(Match, SpawnTeamsDecideWhoIsAnEnemy) {
+  // Whether the player, standing 8 m from the bot in plain view for 5 s, was ever hurt.
+  auto playerHurt = [](int botTeam, int& team) {
+    Level level = room({-4, 0}, {{4, 0}});
+    level.spawns[1].team = botTeam;
+    Match m(level, config(1));
+    const std::vector<PlayerInput> still{game::makeInput({}, 0, 0, 0)};
+    const float full = m.state().actors[0].health;
+    bool hurt = false;
+    for (int t = 0; t < 5 * game::kTicksPerSecond; ++t) {
+      m.tick(still);
+      hurt = hurt || m.state().actors[0].health < full || m.state().actors[0].deaths > 0;
+    }
+    team = m.state().actors[1].team;
+    return hurt;
+  };
+  int team = -2;
+  EXPECT_FALSE(playerHurt(0, team));  // an ally
+  EXPECT_EQ(team, 0);
+  EXPECT_TRUE(playerHurt(7, team));  // another team: an enemy
+  EXPECT_EQ(team, 7);
+  EXPECT_TRUE(playerHurt(-1, team));  // no team: a bot's, 1
+  EXPECT_EQ(team, 1);
+}
+
 // The same level, seed and inputs give the same hash at every tick; another seed another match.
 TEST(Match, SameSeedSameHashes) {
   auto run = [](std::uint64_t seed) {

@@ -6,6 +6,7 @@
 
 #include "game/bots/memory.h"
 #include "game/bots/navigation.h"
+#include "physics/raycast.h"
 
 namespace game {
 
@@ -31,7 +32,27 @@ int wallsBetween(const MatchState& s, rc::Vec2 from, rc::Vec2 to, int limit) {
   const rc::QueryFilter walls = staticSolids(*s.world);
   if (limit == 1) return s.world->castRay(from, to - from, walls) ? 1 : 0;
   const std::vector<rc::WorldHit> hits = s.world->castRayAll(from, to - from, walls);
-  return static_cast<int>(std::min<std::size_t>(hits.size(), static_cast<std::size_t>(limit)));
+  // One wall may be several convex pieces (a concave outline split, merged tiles): the pieces
+  // the ray crosses with no open space between them (one's exit within kSeam of the next's
+  // entry) are one wall. A piece's exit is where a ray cast back from `to` enters it.
+  const float length = rc::length(to - from);
+  const float seam = length > 0.0f ? kWallSeam / length : 0.0f;
+  auto exitOf = [&](const rc::WorldHit& h) {
+    const rc::CastOutput back =
+        rc::rayCast(s.world->shape(h.shape), s.world->transform(h.body), {to, from - to, 1.0f});
+    return back.hit ? 1.0f - back.fraction : 1.0f;  // no hit: it reaches `to`
+  };
+  int count = 0;
+  float end = 0.0f;
+  for (const rc::WorldHit& h : hits) {
+    if (count > 0 && h.fraction <= end + seam) {
+      end = std::max(end, exitOf(h));
+      continue;
+    }
+    if (++count >= limit) break;
+    end = exitOf(h);
+  }
+  return count;
 }
 
 std::optional<int> hears(const MatchState& s, std::size_t listener, const Sound& sound) {

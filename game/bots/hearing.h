@@ -26,6 +26,9 @@ inline constexpr float kExplosionRadius = 60.0f;  // m
 inline constexpr float kFootstepSeconds = 1.6f;   // radius per m/s of speed
 inline constexpr float kSilentSpeed = 2.5f;       // m/s: slower is silent
 inline constexpr int kStrideTicks = 20;
+// Pieces of a wall closer than this along a ray (a seam between convex pieces, tiles side by
+// side) count as one wall.
+inline constexpr float kWallSeam = 0.01f;  // m
 
 // Adds a sound made by actor `maker` now.
 void makeSound(MatchState& s, SoundKind kind, std::size_t maker, rc::Vec2 position, float radius);
@@ -34,8 +37,9 @@ void makeSound(MatchState& s, SoundKind kind, std::size_t maker, rc::Vec2 positi
 // is fast enough to be heard (movement calls this).
 void makeFootstep(MatchState& s, std::size_t actor, float speed);
 
-// The walls between two points (static surfaces a ray from `from` enters on its way to `to`),
-// counted up to `limit` (more are not counted: the caller already knows enough).
+// The walls between two points (static surfaces a ray from `from` enters on its way to `to`;
+// pieces of one wall it crosses with no open space between, one wall), counted up to `limit`
+// (more are not counted: the caller already knows enough).
 int wallsBetween(const MatchState& s, rc::Vec2 from, rc::Vec2 to, int limit);
 
 // Whether `listener` hears the sound (walls counted, the radius halved per wall); the walls when

@@ -210,6 +210,23 @@ TEST(Hearing, EachWallHalvesTheRadius) {
   EXPECT_FALSE(game::hears(s, 1, own));
 }
 
+// A wall of pieces (a concave outline split into convex ones, tiles side by side) is one wall:
+// two boxes touching along the ray count once; 5 cm of open space between them makes two.
+TEST(Hearing, PiecesOfOneWallCountOnce) {
+  Match touching(room({-15, -15}, {{0, 0}}, {{{2, 0}, {0.25f, 5}}, {{2.5f, 0}, {0.25f, 5}}}),
+                 config(1));
+  EXPECT_EQ(game::wallsBetween(touching.state(), {6, 0}, {0, 0}, 10), 1);
+  EXPECT_EQ(game::wallsBetween(touching.state(), {0, 0}, {6, 0}, 10), 1);
+  Match apart(room({-15, -15}, {{0, 0}}, {{{2, 0}, {0.25f, 5}}, {{2.55f, 0}, {0.25f, 5}}}),
+              config(1));
+  EXPECT_EQ(game::wallsBetween(apart.state(), {6, 0}, {0, 0}, 10), 2);
+  Match three(room({-15, -15}, {{0, 0}},
+                   {{{2, 0}, {0.25f, 5}}, {{2.5f, 0}, {0.25f, 5}}, {{4, 0}, {0.25f, 5}}}),
+              config(1));
+  EXPECT_EQ(game::wallsBetween(three.state(), {6, 0}, {0, 0}, 10), 2);
+  EXPECT_EQ(game::wallsBetween(three.state(), {6, 0}, {0, 0}, 1), 1);  // counted up to the limit
+}
+
 // Footsteps by speed: a player running (5 m/s) makes a footstep every kStrideTicks that carries
 // 8 m; one walking at 2 m/s is silent. A bot penned in (1 x 1 m, so it stays put; the pen's wall
 // halves the radius to 4 m) hears the runner pass 2.5 m away, and remembers where it was, exactly

@@ -241,18 +241,19 @@ void MatchView::drawHud(render::DrawList& hud, const MatchState& s,
     hud.text({right, mid}, options.caption, text, pal::kHudDim, render::HAlign::kRight,
              render::VAlign::kMiddle);
   }
-  // Kills per team, in the team's colour, between the two.
-  int teams = 0;
+  // Kills per team, in the team's colour, between the two: the first four teams present, by
+  // number (a level may number them from 0 to 255).
+  std::vector<int> present;
   for (const Actor& a : s.actors)
-    teams = std::max(teams, a.team + 1);
+    if (std::find(present.begin(), present.end(), a.team) == present.end())
+      present.push_back(a.team);
+  std::sort(present.begin(), present.end());
   float x = std::max(left + 2.0f * text, std::round(0.27f * width));
-  for (int t = 0; t < teams && t < 4; ++t) {
-    int kills = 0, members = 0;
-    for (const Actor& a : s.actors) {
+  for (std::size_t k = 0; k < present.size() && k < 4; ++k) {
+    const int t = present[k];
+    int kills = 0;
+    for (const Actor& a : s.actors)
       kills += a.team == t ? a.kills : 0;
-      members += a.team == t;
-    }
-    if (members == 0) continue;
     std::snprintf(line, sizeof line, "%s %d", teamName(s, t).c_str(), kills);
     if (x + textWidth(line, text) > rightStart - text) break;
     hud.text({x, mid}, line, text, pal::team(t), render::HAlign::kLeft, render::VAlign::kMiddle);

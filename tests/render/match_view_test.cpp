@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "game/match/match.h"
@@ -255,6 +256,23 @@ TEST(MatchView, OverlayShowsTheSightConeOnlyWhenAsked) {
   // Behind the bot, outside its cone: still the floor.
   const Probe behind = at(view.camera(), {17.5f, -6.4f});
   EXPECT_PIXEL(overlay, behind.x, behind.y, pal::kFloor, 4);
+}
+
+// The HUD's kills per team name every team present, whatever its number: a bot on team 7 gets a
+// line beside the player's team 0.
+TEST(MatchView, HudNamesEveryTeamPresent) {
+  Level level = room();
+  level.spawns[1].team = 7;
+  Match match(level, oneBot());
+  const MatchView view(match.state(), 640, 360);
+  const render::Frame frame = view.draw(match.state());
+  auto shown = [&frame](const std::string& line) {
+    for (const render::Text& t : frame.hud.texts)
+      if (t.text == line) return true;
+    return false;
+  };
+  EXPECT_TRUE(shown("players 0"));
+  EXPECT_TRUE(shown("bots 0"));
 }
 
 TEST(LevelView, FillLoopsCoversARingAndLeavesItsHole) {

@@ -6,7 +6,7 @@
 
 #include "game/bots/memory.h"
 #include "game/bots/navigation.h"
-#include "physics/raycast.h"
+#include "game/weapons/hitscan.h"
 
 namespace game {
 
@@ -32,25 +32,28 @@ int wallsBetween(const MatchState& s, rc::Vec2 from, rc::Vec2 to, int limit) {
   const rc::QueryFilter walls = staticSolids(*s.world);
   if (limit == 1) return s.world->castRay(from, to - from, walls) ? 1 : 0;
   const std::vector<rc::WorldHit> hits = s.world->castRayAll(from, to - from, walls);
-  // One wall may be several convex pieces (a concave outline split, merged tiles): the pieces
-  // the ray crosses with no open space between them (one's exit within kSeam of the next's
-  // entry) are one wall. A piece's exit is where a ray cast back from `to` enters it.
   const float length = rc::length(to - from);
-  const float seam = length > 0.0f ? kWallSeam / length : 0.0f;
-  auto exitOf = [&](const rc::WorldHit& h) {
-    const rc::CastOutput back =
-        rc::rayCast(s.world->shape(h.shape), s.world->transform(h.body), {to, from - to, 1.0f});
-    return back.hit ? 1.0f - back.fraction : 1.0f;  // no hit: it reaches `to`
+  if (!(length > 0.0f))
+    return static_cast<int>(std::min<std::size_t>(hits.size(), static_cast<std::size_t>(limit)));
+  // One wall may be several convex pieces (a concave outline split): the pieces the ray crosses
+  // with no open space between them (one's exit within kWallSeam of the next's entry) are one
+  // wall. Where the ray leaves a piece, as a fraction of the way: exitOf (a solid's far side, a
+  // tile region's outline), or `to` if it does not.
+  const rc::Vec2 dir = (1.0f / length) * (to - from);
+  auto leaves = [&](const rc::WorldHit& h) {
+    const std::optional<RayExit> exit = exitOf(*s.world, h, dir, (1.0f - h.fraction) * length);
+    return exit ? h.fraction + exit->distance / length : 1.0f;
   };
+  const float seam = kWallSeam / length;
   int count = 0;
   float end = 0.0f;
   for (const rc::WorldHit& h : hits) {
     if (count > 0 && h.fraction <= end + seam) {
-      end = std::max(end, exitOf(h));
+      end = std::max(end, leaves(h));
       continue;
     }
     if (++count >= limit) break;
-    end = exitOf(h);
+    end = leaves(h);
   }
   return count;
 }

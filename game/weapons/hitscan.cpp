@@ -36,19 +36,23 @@ ShotMaterial materialOf(const MatchState& s, const rc::WorldHit& hit) {
   return {};
 }
 
-// Where a ray that entered a body at `entry`, going along `dir`, leaves it, if within `reach`
-// m. A ray starting inside a solid reports fraction 0 and a one-sided chain sees nothing from
+// Something the shot met, and what it carried there.
+struct Impact {
+  rc::ShapeRef what;
+  rc::Vec2 point, dir;
+  float share;  // of the weapon's damage and impulse
+};
+
+}  // namespace
+
+// A ray starting inside a solid reports fraction 0 and a one-sided chain sees nothing from
 // inside, so the exit is found from the other side: a cast back from `reach` m ahead towards
 // the entry. For a solid (convex) shape the first thing that cast meets on the shape is its far
 // side. A chain link is one-sided: cast back, the body shows only the faces where a forward ray
 // leaves its solid (a merged tile region's outline, holes included), and the exit is the one
 // nearest the entry.
-struct Exit {
-  rc::WorldHit hit;
-  float distance;  // from the entry, m
-};
-std::optional<Exit> exitOf(const rc::World& world, const rc::WorldHit& entry, rc::Vec2 dir,
-                           float reach) {
+std::optional<RayExit> exitOf(const rc::World& world, const rc::WorldHit& entry, rc::Vec2 dir,
+                              float reach) {
   const rc::Vec2 far = entry.point + reach * dir;
   const float length = reach + kPastEntry;
   const rc::Vec2 back = -length * dir;
@@ -67,17 +71,8 @@ std::optional<Exit> exitOf(const rc::World& world, const rc::WorldHit& entry, rc
     if (!hits.empty()) hit = hits.back();
   }
   if (!hit) return std::nullopt;
-  return Exit{*hit, std::max(0.0f, reach - hit->fraction * length)};
+  return RayExit{*hit, std::max(0.0f, reach - hit->fraction * length)};
 }
-
-// Something the shot met, and what it carried there.
-struct Impact {
-  rc::ShapeRef what;
-  rc::Vec2 point, dir;
-  float share;  // of the weapon's damage and impulse
-};
-
-}  // namespace
 
 float falloffAt(const HitscanSpec& weapon, float distance) {
   if (distance <= weapon.falloffStart) return 1.0f;
@@ -136,7 +131,7 @@ void traceShot(MatchState& s, std::size_t shooter, std::size_t weapon, int pelle
     }
     if (!(m.thickness <= budget)) break;  // stops in it
     const float left = w.range - distance;
-    const std::optional<Exit> exit = exitOf(*s.world, *hit, dir, left);
+    const std::optional<RayExit> exit = exitOf(*s.world, *hit, dir, left);
     if (!exit) break;  // a chain region that goes on past the range: spent inside
     budget -= m.thickness;
     travelled = distance + exit->distance;

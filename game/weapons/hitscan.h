@@ -19,6 +19,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 
 #include "game/match/match.h"
 #include "game/weapons/grenade.h"
@@ -28,6 +29,16 @@ namespace game {
 
 // Shots see everything but projectiles: a grenade in flight is too small to shoot down.
 inline constexpr rc::ProxyFilter kShotFilter{0xFFFFFFFFu, ~kProjectileFilter.category};
+
+// Where a ray that entered a body at `entry`, going along the unit vector `dir`, leaves its
+// solid, if within `reach` m of the entry (the shape's far side; a tile region's outline, the
+// link nearest the entry): shots going through, and hearing counting the walls between.
+struct RayExit {
+  rc::WorldHit hit;
+  float distance;  // from the entry, m
+};
+std::optional<RayExit> exitOf(const rc::World& world, const rc::WorldHit& entry, rc::Vec2 dir,
+                              float reach);
 
 // The falloff's factor at `distance` m (1 up to falloffStart, minDamage from falloffEnd on) and
 // the damage it gives.

@@ -227,6 +227,26 @@ TEST(Hearing, PiecesOfOneWallCountOnce) {
   EXPECT_EQ(game::wallsBetween(three.state(), {6, 0}, {0, 0}, 1), 1);  // counted up to the limit
 }
 
+// Merged tiles are one-sided outlines, which a ray only enters: two tile regions with open
+// space between are two walls, each found to end where its outline does (cast back from the
+// listener, the whole body's, not the link's).
+TEST(Hearing, TileRegionsCountOnceEach) {
+  Level level = room({-15, -15}, {{0, 0}});
+  game::LevelObject tiles;
+  tiles.kind = game::LevelObjectKind::tiles;
+  for (const float x : {1.5f, 3.5f}) {
+    // Counter-clockwise: the solid on the left, entered from outside.
+    const std::vector<Vec2> loop{{x, -2}, {x + 1, -2}, {x + 1, 2}, {x, 2}};
+    for (const rc::ChainSegment& link : rc::makeChain(loop, true, true))
+      tiles.shapes.emplace_back(link);
+  }
+  level.objects.push_back(tiles);
+  Match m(level, config(1));
+  EXPECT_EQ(game::wallsBetween(m.state(), {6, 0}, {0, 0}, 10), 2);
+  EXPECT_EQ(game::wallsBetween(m.state(), {0, 0}, {6, 0}, 10), 2);
+  EXPECT_EQ(game::wallsBetween(m.state(), {3, 0}, {0, 0}, 10), 1);
+}
+
 // Footsteps by speed: a player running (5 m/s) makes a footstep every kStrideTicks that carries
 // 8 m; one walking at 2 m/s is silent. A bot penned in (1 x 1 m, so it stays put; the pen's wall
 // halves the radius to 4 m) hears the runner pass 2.5 m away, and remembers where it was, exactly

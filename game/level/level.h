@@ -60,6 +60,10 @@ struct LevelObject {
 };
 
 enum class SpawnKind : std::uint8_t { player, bot };
+// The team of a spawn the level gives none: players 0, bots 1.
+constexpr int defaultTeam(SpawnKind kind) {
+  return kind == SpawnKind::player ? 0 : 1;
+}
 
 struct LevelSpawn {
   SpawnKind kind = SpawnKind::player;
@@ -67,7 +71,7 @@ struct LevelSpawn {
   std::string name;
   rc::Vec2 position{};
   float facing = 0.0f;  // radians, counter-clockwise from +x
-  int team = -1;        // the actor's team; -1: its kind's (players 0, bots 1)
+  int team = -1;        // the actor's team; -1: defaultTeam(kind)
   TiledProperties properties;
 };
 
@@ -82,10 +86,12 @@ struct LevelPickup {
   TiledProperties properties;
 };
 
+inline constexpr float kDefaultDamagePerSecond = 10.0f;  // a "hurt" zone's, unless it says
+
 struct LevelTrigger {
-  std::size_t object = 0;         // index in Level::objects (its sensor body)
-  std::string action;             // "kill", "exit", "hurt", ...: the game decides what it means
-  float damagePerSecond = 10.0f;  // what a "hurt" zone takes off each actor inside
+  std::size_t object = 0;  // index in Level::objects (its sensor body)
+  std::string action;      // "kill", "exit", "hurt", ...: the game decides what it means
+  float damagePerSecond = kDefaultDamagePerSecond;  // what a "hurt" zone takes off each actor
 };
 
 // A polyline of type "path": a route for bots, not geometry.

@@ -24,7 +24,7 @@ struct BuiltTrigger {
   std::size_t object = 0;  // index in Level::objects and BuiltLevel::bodies
   rc::BodyId body;
   std::string action;
-  float damagePerSecond = 10.0f;  // LevelTrigger's
+  float damagePerSecond = kDefaultDamagePerSecond;  // LevelTrigger's
   TiledProperties properties;
 };
 

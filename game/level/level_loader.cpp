@@ -105,7 +105,7 @@ void loadPoint(const TiledObject& o, const std::string& type, const TiledPropert
     spawn.name = o.name;
     spawn.position = position;
     spawn.facing = radiansFromTiled(floatProperty(props, "facing", 0.0f, -1e6f, 1e6f, at));
-    spawn.team = intProperty(props, "team", spawn.kind == SpawnKind::player ? 0 : 1, 0, 255, at);
+    spawn.team = intProperty(props, "team", defaultTeam(spawn.kind), 0, 255, at);
     spawn.properties = props;
     s.level.spawns.push_back(std::move(spawn));
   } else if (type == "pickup") {
@@ -224,8 +224,9 @@ void loadObject(const TiledLayer& layer, const TiledObject& o, LoadState& s,
   object.shapes = std::move(placed.shapes);
   const std::size_t index = s.level.objects.size();
   if (object.kind == LevelObjectKind::trigger)
-    s.level.triggers.push_back({index, stringProperty(props, "action", "", at),
-                                floatProperty(props, "damagePerSecond", 10.0f, 0.0f, 1e6f, at)});
+    s.level.triggers.push_back(
+        {index, stringProperty(props, "action", "", at),
+         floatProperty(props, "damagePerSecond", kDefaultDamagePerSecond, 0.0f, 1e6f, at)});
   s.level.objects.push_back(std::move(object));
 }
 

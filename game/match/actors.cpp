@@ -34,7 +34,7 @@ void spawnActors(MatchState& s) {
     a.kind = kind;
     // The spawn's team (a level can set bots against bots, or a bot on the player's side);
     // without one, players are team 0 and bots team 1.
-    a.team = spawn.team >= 0 ? spawn.team : (kind == ActorKind::player ? 0 : 1);
+    a.team = spawn.team >= 0 ? spawn.team : defaultTeam(spawn.kind);
     a.name = (kind == ActorKind::player ? "player " : "bot ") + std::to_string(number + 1);
     a.health = s.tuning.health;
     arm(a, s.weapons);

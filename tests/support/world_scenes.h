@@ -43,6 +43,18 @@ inline BodyId boxAt(World& w, Vec2 p, float half = 0.5f, const ShapeDef& sd = {}
   return b;
 }
 
+// A pyramid of touching 1 m boxes, `base` wide, standing on y = origin.y and centred on
+// origin.x (the ground is the caller's): its bodies row by row from the bottom, left to right.
+inline std::vector<BodyId> pyramidOfBoxes(World& w, int base, Vec2 origin = {}) {
+  std::vector<BodyId> boxes;
+  for (int row = 0; row < base; ++row)
+    for (int i = 0; i < base - row; ++i)
+      boxes.push_back(
+          boxAt(w, origin + Vec2{static_cast<float>(i) - 0.5f * static_cast<float>(base - row - 1),
+                                 0.5f + static_cast<float>(row)}));
+  return boxes;
+}
+
 inline void stepN(World& w, int n, float dt = kStep) {
   for (int i = 0; i < n; ++i)
     w.step(dt);

@@ -22,6 +22,7 @@ using rc::Vec2;
 
 using rc::testing::dynamicAt;
 using rc::testing::kStep;
+using rc::testing::pyramidOfBoxes;
 
 // A world that has everything a snapshot must carry: a settling pile (contacts with warm
 // starts), bouncing balls, a sleeping pile far off, a kinematic mover, a sensor zone, a bullet,
@@ -172,12 +173,7 @@ TEST(Snapshot, KeptSolverLayoutGivesTheBitsOfANewOne) {
   auto pyramid = [&def] {
     auto w = std::make_unique<rc::World>(def);
     w->createShape(w->createBody({}), rc::makeBox(20, 0.5f, {0, -0.5f}));
-    for (int row = 0; row < 8; ++row)
-      for (int i = 0; i < 8 - row; ++i) {
-        const float x = static_cast<float>(i) - 0.5f * static_cast<float>(7 - row);
-        w->createShape(w->createBody(dynamicAt({x, 0.5f + static_cast<float>(row)})),
-                       rc::makeBox(0.5f, 0.5f));
-      }
+    pyramidOfBoxes(*w, 8);
     return w;
   };
   const std::unique_ptr<rc::World> kept = pyramid();

@@ -23,6 +23,7 @@ using rc::Vec2;
 using rc::testing::dynamicAt;
 using rc::testing::finiteState;
 using rc::testing::ground;
+using rc::testing::pyramidOfBoxes;
 using rc::testing::stepWatchingEnergy;
 
 // Kinetic energy (linear and rotational) and linear momentum of some bodies, in double.
@@ -761,15 +762,7 @@ TEST(World, PyramidStaysUp) {
   groundDef.position = {0, -1};
   BodyId g = w.createBody(groundDef);
   w.createShape(g, rc::makeBox(100, 1));
-  BodyId top;
-  const int base = 20;
-  for (int row = 0; row < base; ++row)
-    for (int i = 0; i < base - row; ++i) {
-      top =
-          w.createBody(dynamicAt({static_cast<float>(i) - 0.5f * static_cast<float>(base - row - 1),
-                                  0.5f + static_cast<float>(row)}));
-      w.createShape(top, rc::makeBox(0.5f, 0.5f));
-    }
+  const BodyId top = pyramidOfBoxes(w, 20).back();
   for (int i = 0; i < 600; ++i) {
     w.step(1.0f / 60.0f);
     ASSERT_TRUE(finiteState(w)) << "step " << i;

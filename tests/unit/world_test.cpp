@@ -24,6 +24,7 @@ using rc::Vec2;
 using rc::testing::dynamicAt;
 using rc::testing::finiteState;
 using rc::testing::ground;
+using rc::testing::pyramidOfBoxes;
 using rc::testing::restingRow;
 using rc::testing::stepWatchingEnergy;
 
@@ -40,15 +41,7 @@ TEST(World, FarFromTheOriginLikeAtTheOrigin) {
     rc::BodyDef groundDef;
     groundDef.position = origin + Vec2{0, -1};
     w.createShape(w.createBody(groundDef), rc::makeBox(30, 1));
-    std::vector<BodyId> boxes;
-    const int base = 10;
-    for (int row = 0; row < base; ++row)
-      for (int i = 0; i < base - row; ++i) {
-        boxes.push_back(w.createBody(dynamicAt(
-            origin + Vec2{static_cast<float>(i) - 0.5f * static_cast<float>(base - row - 1),
-                          0.5f + static_cast<float>(row)})));
-        w.createShape(boxes.back(), rc::makeBox(0.5f, 0.5f));
-      }
+    const std::vector<BodyId> boxes = pyramidOfBoxes(w, 10, origin);
     for (int k = 0; k < 300; ++k)
       w.step(1.0f / 60.0f);
     std::vector<std::array<double, 2>> relative;

@@ -551,6 +551,17 @@ class Quadtree::CellWalk {
     return true;
   }
 
+  // Visits the columns in order until one's lower bound passes maxFraction, which the visits
+  // may lower (a lone walk: step() in a loop, without choosing between walks).
+  template <class VisitList>
+  void run(VisitList& visitList, const float& maxFraction) {
+    while (next_ <= maxFraction) {
+      if (!visitColumn(visitList, maxFraction)) return;
+      if (++col_ > last_) return;
+      next_ = lowerBound();
+    }
+  }
+
   // The lower bound of the next column this walk will visit (kNever when done).
   float next() const { return next_; }
 
@@ -639,6 +650,12 @@ void Quadtree::cast(const RayCastInput& in, float radius, ProxyFilter filter, Ca
       const Level& level = tree->levels[static_cast<std::size_t>(std::countr_zero(bits))];
       if (level.mayPass(filter) && walks[static_cast<std::size_t>(n)].start(frame, level)) ++n;
     }
+  // A lone walk (one populated level the filter may pass, as in a scene of like-sized shapes)
+  // runs its columns in order: 0.85x the instructions of a 50 m world ray among 1000 circles.
+  if (n == 1) {
+    walks[0].run(visitList, current.maxFraction);
+    return;
+  }
   while (true) {
     int best = -1;
     float bestT = CellWalk::kNever;

@@ -33,6 +33,7 @@ std::optional<CoverSpot> findCover(MatchState& s, std::size_t actor, rc::Vec2 th
   int farthest = start;
   float farthestDistance = rc::distanceSquared(grid.center(start), threat);
   for (const int c : cells) {
+    if (grid.costly(c)) continue;  // no hiding in a hurt zone
     const rc::Vec2 p = grid.center(c);
     const float d = rc::distanceSquared(p, threat);
     if (d > farthestDistance) {

@@ -70,10 +70,13 @@ void spreadPatrolPoints(NavGrid& grid, const std::vector<rc::Vec2>& places) {
         nearest[k] = std::min(nearest[k], rc::distanceSquared(grid.center(grid.open[k]), p));
     }
     if (grid.patrol.size() >= kPatrolPoints) break;
-    std::size_t best = 0;
-    for (std::size_t k = 1; k < grid.open.size(); ++k)
-      if (nearest[k] > nearest[best]) best = k;
-    if (!(nearest[best] > 0.0f)) break;  // every open cell is a patrol point already
+    // Not in a hurt zone: a patrol would stand there (the level's own places may be).
+    std::size_t best = grid.open.size();
+    for (std::size_t k = 0; k < grid.open.size(); ++k)
+      if (!grid.costly(grid.open[k]) && (best == grid.open.size() || nearest[k] > nearest[best]))
+        best = k;
+    // Every open cell costly, or a patrol point already.
+    if (best == grid.open.size() || !(nearest[best] > 0.0f)) break;
     grid.patrol.push_back(grid.open[best]);
   }
 }
@@ -228,12 +231,17 @@ NavGrid buildNavGrid(const Level& level, const BuiltLevel& built, const rc::Worl
     }
     cell *= 2.0f;
   }
-  std::vector<rc::BodyId> killers;
-  for (const BuiltTrigger& t : built.triggers)
+  std::vector<rc::BodyId> killers, hurters;
+  for (const BuiltTrigger& t : built.triggers) {
     if (t.action == "kill") killers.push_back(t.body);
+    if (t.action == "hurt") hurters.push_back(t.body);
+  }
   const rc::QueryFilter solids = staticSolids(world);
   const rc::QueryFilter hazards(kEverything, [&killers](const rc::ShapeRef& r) {
     return std::find(killers.begin(), killers.end(), r.body) != killers.end();
+  });
+  const rc::QueryFilter hurts(kEverything, [&hurters](const rc::ShapeRef& r) {
+    return std::find(hurters.begin(), hurters.end(), r.body) != hurters.end();
   });
   const rc::Shape disc = rc::makeCircle({}, radius + kNavMargin);
   const rc::Shape wide = rc::makeCircle({}, radius + kNavMargin + kNavSpan * cell);
@@ -251,6 +259,10 @@ NavGrid buildNavGrid(const Level& level, const BuiltLevel& built, const rc::Worl
       std::uint8_t f = 0;
       if (!killers.empty() && !world.overlapShape(deadly, at, hazards).empty())
         f |= NavGrid::kHazard;
+      // Hurt zones: costly as far out as a wall makes a cell not roomy, so that a walk from
+      // centre to centre of cells that are not costly (half a diagonal at most from one of them)
+      // and a shortcut between roomy cells never take the actor into one.
+      if (!hurters.empty() && !world.overlapShape(wide, at, hurts).empty()) f |= NavGrid::kCostly;
       if (enclosed[c] != 0) {
         f |= NavGrid::kBlocked;
         if (world.overlapShape(core, at, solids).empty()) f |= NavGrid::kOpaque;
@@ -370,7 +382,7 @@ bool findPath(const NavGrid& grid, int start, int goal, PathSearch& search, std:
       const int nx = x + kDx[k], ny = y + kDy[k];
       const int next = ny * width + nx;
       if (closed[next] == stamp) continue;
-      const std::int32_t g2 = g + (k < 4 ? kStraightCost : kDiagonalCost);
+      const std::int32_t g2 = g + stepCost(grid, c, next, k >= 4);
       if (reached[next] == stamp && g2 >= cost[next]) continue;
       reached[next] = stamp;
       cost[next] = g2;
@@ -389,8 +401,8 @@ void distanceField(const NavGrid& grid, int goal, std::vector<std::int32_t>& out
   // Dijkstra from the goal (the steps are symmetric: this is the cost to it from anywhere) with a
   // bucket queue: costs are integers and a step costs less than kBuckets, so the cells at
   // distance d wait in bucket d % kBuckets and no two distances pending share one.
-  constexpr int kBuckets = 128;
-  static_assert(kDiagonalCost < kBuckets && kStraightCost > 0);
+  constexpr int kBuckets = 512;
+  static_assert(kDiagonalCost * (1 + 2 * kCostlyFactor) < kBuckets && kStraightCost > 0);
   std::vector<std::vector<int>> buckets(kBuckets);
   out[static_cast<std::size_t>(goal)] = 0;
   buckets[0].push_back(goal);
@@ -405,7 +417,7 @@ void distanceField(const NavGrid& grid, int goal, std::vector<std::int32_t>& out
       for (int step = 0; step < 8; ++step) {
         if ((legal >> step & 1u) == 0) continue;
         const int next = c + kDy[step] * grid.width + kDx[step];
-        const std::int32_t nd = d + (step < 4 ? kStraightCost : kDiagonalCost);
+        const std::int32_t nd = d + stepCost(grid, c, next, step >= 4);
         if (nd < out[static_cast<std::size_t>(next)]) {
           out[static_cast<std::size_t>(next)] = nd;
           buckets[static_cast<std::size_t>(nd % kBuckets)].push_back(next);
@@ -433,8 +445,7 @@ bool descendField(const NavGrid& grid, const std::vector<std::int32_t>& field, i
       if (!canStep(grid, x, y, k)) continue;
       const int next = c + kDy[k] * grid.width + kDx[k];
       const std::int32_t there = field[static_cast<std::size_t>(next)];
-      if (there != kUnreached && there + (k < 4 ? kStraightCost : kDiagonalCost) == here)
-        best = next;
+      if (there != kUnreached && there + stepCost(grid, c, next, k >= 4) == here) best = next;
     }
     if (best < 0) {  // a field of another grid: no way down
       out.clear();
@@ -457,7 +468,7 @@ std::int32_t pathCost(const NavGrid& grid, const std::vector<int>& cells) {
   for (std::size_t k = 1; k < cells.size(); ++k) {
     const bool diagonal =
         grid.x(cells[k]) != grid.x(cells[k - 1]) && grid.y(cells[k]) != grid.y(cells[k - 1]);
-    cost += diagonal ? kDiagonalCost : kStraightCost;
+    cost += stepCost(grid, cells[k - 1], cells[k], diagonal);
   }
   return cost;
 }

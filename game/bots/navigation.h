@@ -6,17 +6,24 @@
 // static geometry (walls, tiles, static props) or where its centre is inside merged tiles (a
 // chain loop has no inside for an overlap test: a scanline says what the loops enclose), and a
 // hazard where a disc kNavSpan + 1 cells wider would reach a kill trigger (a crowd can push a bot
-// walking past); both are impassable. A cell inside tiles and farther than its half diagonal from
+// walking past); both are impassable. A passable cell is costly where the disc kNavSpan cells
+// wider would reach a hurt trigger (so a walk from centre to centre of cells that are not costly
+// never takes the actor into one): a bot may cross a hurt zone, but a step costs twice its
+// plain cost more for each costly end (kCostlyFactor), so a cell's worth of walk inside one
+// costs five outside, and a route goes round the zone unless the way round is about four times
+// as long. A cell inside tiles and farther than its half diagonal from
 // their edges is opaque: any point nearer its centre than any other's is inside the wall. A
 // passable cell is roomy when the wider disc meets no static geometry either: an actor anywhere in
-// it is clear of walls. Moving props are not obstacles (actors push them). The grid is built once
-// per match from the level's static bodies: derived data (the same level gives the same grid), so
-// it is neither hashed nor saved.
+// it is clear of walls (and of hurt zones). Moving props are not obstacles (actors push them). The
+// grid is built once per match from the level's static bodies: derived data (the same level gives
+// the same grid), so it is neither hashed nor saved.
 //
 // Paths: A* over the 8-connected grid with no corner cutting (a diagonal step needs both of its
 // straight neighbours passable). Steps cost 70 straight and 99 diagonally (99/70 = 1.41429,
-// sqrt 2 to 1e-5), integers so that costs compare exactly; the heuristic is the octile distance
-// in the same units, the cost of the path with no obstacle, raised where a landmark knows better
+// sqrt 2 to 1e-5), more into and out of costly cells (stepCost: the same both ways, so a
+// distance field from a point is the cost to it), integers so that costs compare exactly; the
+// heuristic is the octile distance in the same units, the cost of the path with no obstacle or
+// hurt zone, raised where a landmark knows better
 // (ALT: Goldberg and Harrelson 2005): for the patrol points' distance fields L (below),
 // |L(goal) - L(n)| is at most the cost from n to the goal, and the search takes the four that
 // bound the start best. Each bound and the octile distance is admissible and consistent, so is
@@ -55,17 +62,19 @@ inline constexpr float kNavMargin = 0.05f;
 inline constexpr float kNavSpan = 0.70711f + 0.125f;
 // Step costs (see above).
 inline constexpr std::int32_t kStraightCost = 70, kDiagonalCost = 99;
+// What each costly end adds to a step, in multiples of its plain cost.
+inline constexpr std::int32_t kCostlyFactor = 2;
 inline constexpr std::size_t kPatrolPoints = 24;
 // A cell no path reaches, in a distance field.
 inline constexpr std::int32_t kUnreached = 0x7FFFFFFF;
 
 struct NavGrid {
-  static constexpr std::uint8_t kBlocked = 1, kHazard = 2, kRoomy = 4, kOpaque = 8;
+  static constexpr std::uint8_t kBlocked = 1, kHazard = 2, kRoomy = 4, kOpaque = 8, kCostly = 16;
   int width = 0, height = 0;
   float cell = 0.5f;                 // m
   rc::Vec2 origin{};                 // the centre of cell 0 (x 0, y 0); cell index y * width + x
   float radius = 0.0f;               // the actor's radius it was built for (m)
-  std::vector<std::uint8_t> flags;   // per cell: kBlocked, kHazard, kRoomy, kOpaque
+  std::vector<std::uint8_t> flags;   // per cell: kBlocked, kHazard, kRoomy, kOpaque, kCostly
   std::vector<std::int32_t> region;  // per cell: its connected region of passable cells, or -1
   std::vector<std::int32_t> open;    // the passable cells, in index order
   std::vector<std::uint8_t>
@@ -77,6 +86,7 @@ struct NavGrid {
   bool passable(int c) const {
     return (flags[static_cast<std::size_t>(c)] & (kBlocked | kHazard)) == 0;
   }
+  bool costly(int c) const { return (flags[static_cast<std::size_t>(c)] & kCostly) != 0; }
   int x(int c) const { return c % width; }
   int y(int c) const { return c / width; }
   rc::Vec2 center(int c) const {
@@ -113,6 +123,13 @@ struct PathSearch {
   std::vector<int> path, cells;  // for callers: a path's cells, a search's reach
 };
 
+// The cost of a step between neighbouring cells a and b: kStraightCost or kDiagonalCost, and
+// kCostlyFactor times that again for each of them that is costly.
+inline std::int32_t stepCost(const NavGrid& grid, int a, int b, bool diagonal) {
+  const std::int32_t base = diagonal ? kDiagonalCost : kStraightCost;
+  return base * (1 + kCostlyFactor * (int{grid.costly(a)} + int{grid.costly(b)}));
+}
+
 // The octile distance between two cells, in step costs.
 std::int32_t octileDistance(const NavGrid& grid, int a, int b);
 
@@ -136,7 +153,7 @@ bool descendField(const NavGrid& grid, const std::vector<std::int32_t>& field, i
 bool pathToPatrolPoint(const NavGrid& grid, int start, std::size_t point, PathSearch& search,
                        std::vector<int>& out);
 
-// The cost of a path of adjacent cells (kStraightCost, kDiagonalCost per step).
+// The cost of a path of adjacent cells (stepCost per step).
 std::int32_t pathCost(const NavGrid& grid, const std::vector<int>& cells);
 
 // The passable cell nearest the point (by its centre; ties to the lower index) within `reach`
@@ -149,7 +166,7 @@ void reachableCells(const NavGrid& grid, int start, int steps, PathSearch& searc
                     std::vector<int>& out);
 
 // Whether a straight walk from a to b keeps to roomy cells (checked every quarter cell): an actor
-// walking it meets no static body and enters no hazard.
+// walking it meets no static body and enters no hazard or hurt zone.
 bool walkable(const NavGrid& grid, rc::Vec2 a, rc::Vec2 b);
 
 // The path of cells as waypoints for a walk from `from`: its turns, then those skipped that a

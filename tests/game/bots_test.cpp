@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <queue>
 #include <string>
 #include <vector>
@@ -19,6 +20,7 @@
 #include "game/bots/navigation.h"
 #include "game/bots/sight.h"
 #include "game/level/level_loader.h"
+#include "game/match/actors.h"
 #include "game/match/match.h"
 #include "match_test_support.h"
 #include "physics/random.h"
@@ -513,7 +515,8 @@ TEST(Behaviour, PatrolGivesWayInACorridor) {
 
 // ---- Navigation -----------------------------------------------------------------------------
 
-// Dijkstra over the same moves and costs: the cost of the cheapest path, or -1.
+// Dijkstra over the same moves and costs (a step 70 straight or 99 diagonally, times 1 + 2 for
+// each end in a costly cell, as navigation.h documents): the cost of the cheapest path, or -1.
 std::int32_t dijkstra(const NavGrid& g, int start, int goal) {
   std::vector<std::int32_t> cost(static_cast<std::size_t>(g.size()),
                                  std::numeric_limits<std::int32_t>::max());
@@ -535,8 +538,10 @@ std::int32_t dijkstra(const NavGrid& g, int start, int goal) {
         if (dx != 0 && dy != 0 &&
             (!g.passable(g.y(at) * g.width + x) || !g.passable(y * g.width + g.x(at))))
           continue;
-        const std::int32_t next =
-            c + (dx != 0 && dy != 0 ? game::kDiagonalCost : game::kStraightCost);
+        const int costlyEnds =
+            ((g.flags[static_cast<std::size_t>(at)] & NavGrid::kCostly) != 0) +
+            ((g.flags[static_cast<std::size_t>(y * g.width + x)] & NavGrid::kCostly) != 0);
+        const std::int32_t next = c + (dx != 0 && dy != 0 ? 99 : 70) * (1 + 2 * costlyEnds);
         if (next < cost[static_cast<std::size_t>(y * g.width + x)]) {
           cost[static_cast<std::size_t>(y * g.width + x)] = next;
           open.push({next, y * g.width + x});
@@ -548,9 +553,10 @@ std::int32_t dijkstra(const NavGrid& g, int start, int goal) {
 }
 
 // A* finds a path exactly when Dijkstra does, of the same cost, on 150 random grids (1 x 1 to
-// 40 x 40, 0 to 45% blocked); every path is legal (passable cells, one step apart, no corner
-// cut, from start to goal), and the same query gives the same path from a fresh search. The walk
-// down a patrol point's distance field costs what Dijkstra says too.
+// 40 x 40, 0 to 45% blocked, every other grid with 0 to 30% of its cells costly); every path is
+// legal (passable cells, one step apart, no corner cut, from start to goal), and the same query
+// gives the same path from a fresh search. The walk down a patrol point's distance field costs what
+// Dijkstra says too.
 TEST(Navigation, AStarAgainstDijkstraOnRandomGrids) {
   rc::Random rng(19);
   game::PathSearch search, fresh;
@@ -559,9 +565,10 @@ TEST(Navigation, AStarAgainstDijkstraOnRandomGrids) {
   for (int round = 0; round < 150; ++round) {
     const int w = 1 + static_cast<int>(rng.below(40)), h = 1 + static_cast<int>(rng.below(40));
     const float density = rng.uniform(0.0f, 0.45f);
+    const float hurt = round % 2 == 1 ? rng.uniform(0.0f, 0.3f) : 0.0f;
     std::vector<std::uint8_t> flags(static_cast<std::size_t>(w * h));
     for (std::uint8_t& f : flags)
-      f = rng.uniform() < density ? NavGrid::kBlocked : 0;
+      f = rng.uniform() < density ? NavGrid::kBlocked : rng.uniform() < hurt ? NavGrid::kCostly : 0;
     const NavGrid g = game::makeNavGrid(w, h, 0.5f, {}, flags);
     if (g.open.empty()) continue;
     for (int q = 0; q < 8; ++q) {
@@ -661,6 +668,109 @@ TEST(Navigation, LevelGridFromWallsAndKillZones) {
     from = p;
   }
   EXPECT_LE(points.size(), 4u);  // round the pit, not cell by cell
+}
+
+// A hurt zone's cells: costly where the actor's disc kNavSpan cells wider would overlap it (a
+// closed form: the distance from the cell's centre to the zone's box against the actor's radius,
+// the margin and kNavSpan cells), never roomy, and still passable. A route past a short zone
+// goes round it (no costly cell; its smoothed walk keeps the actor and its margin out); one
+// across a zone from wall to wall crosses it straight, through as few costly cells as the zone
+// and its margins are thick.
+TEST(Navigation, HurtZonesCostMoreAndAreWalkedRound) {
+  Level level = room({-15, -15}, {});
+  auto addHurt = [&level](Vec2 at, Vec2 half) {
+    game::LevelObject zone;
+    zone.kind = game::LevelObjectKind::trigger;
+    zone.position = at;
+    zone.shapes.push_back(rc::makeBox(half.x, half.y));
+    level.objects.push_back(zone);
+    level.triggers.push_back({level.objects.size() - 1, "hurt"});
+  };
+  addHurt({-8, 0}, {1, 3});  // short: a way round above and below
+  addHurt({8, 0}, {1, 20});  // from wall to wall
+  Match m(level, config(0));
+  const NavGrid& g = m.state().nav;
+  const float clear = m.state().tuning.radius + game::kNavMargin;
+  const float reach = clear + game::kNavSpan * g.cell;
+  auto toBox = [](Vec2 p, Vec2 at, Vec2 half) {
+    const float dx = std::max(std::fabs(p.x - at.x) - half.x, 0.0f);
+    const float dy = std::max(std::fabs(p.y - at.y) - half.y, 0.0f);
+    return std::hypot(dx, dy);
+  };
+  int costly = 0;
+  for (int c = 0; c < g.size(); ++c) {
+    const Vec2 p = g.center(c);
+    const float d = std::min(toBox(p, {-8, 0}, {1, 3}), toBox(p, {8, 0}, {1, 20}));
+    const std::uint8_t f = g.flags[static_cast<std::size_t>(c)];
+    if ((f & NavGrid::kBlocked) != 0) continue;
+    if (d < reach - 1e-3f) {
+      ASSERT_NE(f & NavGrid::kCostly, 0) << p.x << " " << p.y;
+      ASSERT_EQ(f & NavGrid::kRoomy, 0) << p.x << " " << p.y;
+      ++costly;
+    }
+    if (d > reach + 1e-3f) {
+      ASSERT_EQ(f & NavGrid::kCostly, 0) << p.x << " " << p.y;
+    }
+    ASSERT_TRUE(g.passable(c));
+  }
+  EXPECT_GT(costly, 500);
+  for (const int c : g.patrol)
+    EXPECT_FALSE(g.costly(c)) << g.center(c).x << " " << g.center(c).y;
+
+  game::PathSearch search;
+  std::vector<int> cells;
+  auto costlyCells = [&g](const std::vector<int>& path) {
+    return std::count_if(path.begin(), path.end(), [&g](int c) { return g.costly(c); });
+  };
+  // Past the short zone: round it, and the smoothed walk keeps clear of it.
+  ASSERT_TRUE(game::findPath(g, g.cellAt({-12, 0}), g.cellAt({-4, 0}), search, cells));
+  EXPECT_EQ(costlyCells(cells), 0);
+  EXPECT_LT(game::pathCost(g, cells), 3 * game::octileDistance(g, cells.front(), cells.back()));
+  Vec2 from{-12, 0};
+  for (const Vec2 p : game::smoothPath(g, from, cells, 24)) {
+    for (float t = 0.0f; t <= 1.0f; t += 1.0f / 64.0f)
+      EXPECT_GT(toBox(from + t * (p - from), {-8, 0}, {1, 3}), clear - 1e-3f);
+    from = p;
+  }
+  // Across the wall-to-wall zone: straight through it, through as few costly cells as there are
+  // centres within the reach of it on a line across (seven: x = 6.5 to 9.5).
+  ASSERT_TRUE(game::findPath(g, g.cellAt({3, 5}), g.cellAt({13, 5}), search, cells));
+  int thick = 0;
+  for (float x = 3.0f; x <= 13.0f; x += g.cell)
+    thick += toBox({x, 5}, {8, 0}, {1, 20}) < reach;
+  EXPECT_EQ(thick, 7);
+  EXPECT_EQ(costlyCells(cells), thick);
+  for (const int c : cells)
+    EXPECT_NEAR(g.center(c).y, 5.0f, 1e-3f);
+}
+
+// The bundled arena's hurt zone, 16 bots for a minute: the actors inside it (the query the rules
+// hurt them by) add up to at most half an actor-second. Before the grid knew hurt zones, the
+// same matches (seeds 1-3) spent 10-16 actor-seconds in it every three minutes.
+TEST(Navigation, BotsKeepOutOfTheArenasHurtZone) {
+  MatchConfig c = config(16);
+  c.seed = 1;
+  std::int64_t inside = 0;
+  c.testHook = [&inside](MatchState& s) {
+    constexpr rc::ProxyFilter kActorsOnly{0xFFFFFFFFu, game::kActorFilter.category};
+    for (const game::BuiltTrigger& t : s.built.triggers) {
+      if (t.action != "hurt") continue;
+      std::vector<bool> in(s.actors.size());
+      const rc::Transform at = s.world->transform(t.body);
+      for (const rc::ShapeId zone : s.world->shapesOf(t.body))
+        for (const rc::ShapeRef& r : s.world->overlapShape(s.world->shape(zone), at, kActorsOnly)) {
+          const std::optional<game::GameRef> a = game::gameRefOf(r.bodyUserData);
+          if (a && a->kind == game::GameKind::actor && s.actors[a->index].alive)
+            in[a->index] = true;
+        }
+      inside += std::count(in.begin(), in.end(), true);
+    }
+  };
+  Match m(game::loadLevel(std::string(RICOCHET_SOURCE_DIR) + "/assets/levels/arena.tmj"), c);
+  ASSERT_FALSE(m.state().built.triggers.empty());
+  for (int t = 0; t < 60 * game::kTicksPerSecond; ++t)
+    m.tick();
+  EXPECT_LE(inside, game::kTicksPerSecond / 2);
 }
 
 // The bundled maze: a bot sent from its spawn to the player's walks its path there, within 30%

@@ -27,6 +27,7 @@ enum class Behaviour : std::uint8_t {
   attack,       // an enemy in sight: shooting it, with aim error, at a fighting distance
   takeCover,    // hurt and hit again: going to a place the enemy cannot see, firing back
   flee,         // hurt and hit again, no cover near: running away from the enemy
+  fetch,        // hurt or short of rounds, no enemy in sight: going to a pickup that gives it
 };
 const char* behaviourName(Behaviour behaviour);
 

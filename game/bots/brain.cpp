@@ -5,6 +5,11 @@
 //   patrol       nothing remembered: walk between the level's patrol points (its spawns,
 //                pickups, markers and path points, and open places spread between them), along
 //                grid paths (navigation.h)
+//   fetch        hurt (at most kHurtFraction of full health) or short of rounds (at most
+//                kLowAmmoFraction of a spawn's), and no enemy in sight (or none remembered; or
+//                out of rounds altogether): walk to the nearest pickup there that gives what it
+//                lacks (a bot knows the map: where pickups are and whether they are there now),
+//                facing the way it walks, or the enemy it remembers
 //   investigate  the strongest memory is a sound: walk to where it came from, facing it; once
 //                there, look around until the memory fades
 //   chase        the strongest memory is an enemy seen but no longer in sight: walk to where it
@@ -26,12 +31,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "game/bots/cover.h"
 #include "game/bots/hearing.h"
 #include "game/bots/memory.h"
 #include "game/bots/navigation.h"
 #include "game/bots/sight.h"
+#include "game/rules/pickups.h"
 #include "physics/trig.h"
 
 namespace game {
@@ -50,6 +57,8 @@ const char* behaviourName(Behaviour behaviour) {
       return "take cover";
     case Behaviour::flee:
       return "flee";
+    case Behaviour::fetch:
+      return "fetch";
   }
   return "?";
 }
@@ -69,6 +78,7 @@ const char* soundKindName(SoundKind kind) {
 namespace {
 
 constexpr float kHurtFraction = 0.5f;
+constexpr float kLowAmmoFraction = 0.25f;
 constexpr float kTurnRate = 8.0f;  // rad/s: half a turn in 0.4 s
 constexpr float kTurnPerTick = kTurnRate / kTicksPerSecond;
 constexpr float kScanPerTick = 2.0f / kTicksPerSecond;  // rad: looking around where it went
@@ -224,10 +234,53 @@ rc::Vec2 pickGoal(MatchState& s, rc::Vec2 at, rc::Vec2 away) {
   return nav.center(fallback);
 }
 
-// The behaviour its memory and health call for (finding cover when a hurt bot is hit).
+// The pickup a bot goes for (fetch): the nearest (straight, ties to the lower index) that is
+// there, on the bot's part of the grid, and gives what it lacks (health when hurt, rounds of its
+// weapon when short of them); none when it lacks nothing.
+std::optional<rc::Vec2> neededPickup(const MatchState& s, std::size_t i, rc::Vec2 at) {
+  const Actor& a = s.actors[i];
+  const bool hurt = a.health <= kHurtFraction * s.tuning.health;
+  const bool shortOfRounds = !s.weapons.weapons.empty() &&
+                             static_cast<float>(a.ammo[0]) <=
+                                 kLowAmmoFraction * static_cast<float>(s.weapons.weapons[0].ammo);
+  if (!hurt && !shortOfRounds) return std::nullopt;
+  const int start = nearestPassable(s.nav, at);
+  std::optional<rc::Vec2> best;
+  float bestDistance = 0.0f;
+  for (const PickupState& p : s.pickups) {
+    const bool wanted = (hurt && p.item == PickupItem::health) ||
+                        (shortOfRounds && p.item == PickupItem::ammo && p.weapon == 0);
+    if (!p.available || !wanted || !(pickupGift(s, a, p) > 0.0f)) continue;
+    if (start >= 0) {  // reachable from here (a pickup is usually on a passable cell)
+      const std::int32_t region = s.nav.region[static_cast<std::size_t>(start)];
+      const int under = s.nav.cellAt(p.position);
+      const bool reachable = s.nav.passable(under)
+                                 ? s.nav.region[static_cast<std::size_t>(under)] == region
+                                 : nearestPassable(s.nav, p.position, region) >= 0;
+      if (!reachable) continue;
+    }
+    const float d = rc::distanceSquared(at, p.position);
+    if (!best || d < bestDistance) {
+      best = p.position;
+      bestDistance = d;
+    }
+  }
+  return best;
+}
+
+// The behaviour its memory, health and rounds call for (finding cover when a hurt bot is hit,
+// the pickup to fetch into mind.goal).
 Behaviour choose(MatchState& s, std::size_t i, rc::Vec2 at) {
   BotMind& mind = s.minds[i];
-  if (mind.focus < 0) return Behaviour::patrol;
+  const std::optional<rc::Vec2> pickup = neededPickup(s, i, at);
+  auto fetch = [&]() {
+    if (mind.goal != *pickup || mind.behaviour != Behaviour::fetch) {
+      mind.goal = *pickup;
+      mind.route.planned = -1;
+    }
+    return Behaviour::fetch;
+  };
+  if (mind.focus < 0) return pickup ? fetch() : Behaviour::patrol;
   const MemoryEntry& threat = mind.memory[static_cast<std::size_t>(mind.focus)];
   const float health = s.actors[i].health;
   if (health <= kHurtFraction * s.tuning.health) {
@@ -243,7 +296,10 @@ Behaviour choose(MatchState& s, std::size_t i, rc::Vec2 at) {
     }
     if (hiding && s.tick - mind.behaviourSince < kHideTicks) return mind.behaviour;
   }
+  // Out of rounds, it cannot fight; short of them or hurt, it fetches while nothing is in sight.
+  if (pickup && s.actors[i].ammo[0] == 0) return fetch();
   if (inSight(mind, threat)) return Behaviour::attack;
+  if (pickup) return fetch();
   return threat.sense == Sense::seen ? Behaviour::chase : Behaviour::investigate;
 }
 
@@ -381,6 +437,15 @@ PlayerInput decide(MatchState& s, std::size_t i) {
       aim = turnToward(a.aim, exact + s.rng.uniform(-error, error));
       if (std::fabs(wrapAngle(exact - aim)) < kFireCone && clearOfFriends(s, i, at, target))
         buttons = kButtonFire;
+      break;
+    }
+    case Behaviour::fetch: {
+      move = steer(s, i, at, mind.goal);
+      // Facing the enemy it remembers (it may show up), else the way it walks.
+      if (threat != nullptr)
+        aim = turnToward(a.aim, angleOf(threat->position - at));
+      else if (move != rc::Vec2{})
+        aim = turnToward(a.aim, angleOf(move));
       break;
     }
     case Behaviour::takeCover:

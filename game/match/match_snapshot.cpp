@@ -110,7 +110,7 @@ void ioInput(A& a, auto& in) {
 // What a mind's fields may hold: a hostile snapshot must not make the brain index past an array.
 template <class A>
 void checkMind(A& a, const BotMind& m, std::size_t actors) {
-  bool ok = m.behaviour <= Behaviour::flee && m.focus >= -1 &&
+  bool ok = m.behaviour <= Behaviour::fetch && m.focus >= -1 &&
             m.focus < static_cast<std::int32_t>(kMemorySlots) &&
             m.route.length <= kRouteWaypoints && m.route.next <= m.route.length &&
             m.route.partial <= 1;

@@ -127,7 +127,7 @@ PerceptionOverlay perceptionOf(const MatchState& s, std::size_t actor) {
                    : entry.position;
   }
   if (mind.behaviour == Behaviour::patrol || mind.behaviour == Behaviour::takeCover ||
-      mind.behaviour == Behaviour::flee)
+      mind.behaviour == Behaviour::flee || mind.behaviour == Behaviour::fetch)
     p.goal = mind.goal;
   // The path it follows: from where it is through the waypoints it has not reached.
   if (mind.route.planned >= 0 && mind.route.next < mind.route.length) {

@@ -471,6 +471,108 @@ TEST(Behaviour, HurtTakesCoverOrFlees) {
   }
 }
 
+// A bot that lacks something and sees no enemy fetches the nearest pickup there that gives it:
+// hurt, the nearer of two health packs (13 m away: its goal from the first tick, taken within
+// 5 s at 4 m/s); out of rounds, the ammo pack (within 10 s). A pack already taken is passed
+// over for the other. With nothing lacking it patrols again.
+TEST(Behaviour, FetchesThePickupItNeeds) {
+  Level level = room({-15, -15}, {{0, 0}});
+  auto addPickup = [&level](const std::string& item, float amount, Vec2 at) {
+    game::LevelPickup p;
+    p.tiledId = static_cast<std::int64_t>(level.pickups.size()) + 1;
+    p.item = item;
+    p.amount = amount;
+    p.respawn = 30;
+    p.position = at;
+    level.pickups.push_back(p);
+  };
+  addPickup("health", 50, {-12, 5});
+  addPickup("ammo", 20, {12, -5});
+  addPickup("health", 50, {-14, -12});
+  MatchConfig c = config(1);
+  c.players = 0;
+  Match m(std::move(level), c);
+  MatchState& s = m.state();
+  ASSERT_EQ(s.actors.size(), 1u);
+  ASSERT_EQ(s.pickups.size(), 3u);
+  auto runUntilTaken = [&m, &s](std::size_t pickup, int limit) {
+    int t = 0;
+    while (s.pickups[pickup].timesTaken == 0 && t < limit) {
+      m.tick();
+      ++t;
+    }
+    return t;
+  };
+  m.tick();
+  EXPECT_EQ(s.minds[0].behaviour, Behaviour::patrol);
+  s.actors[0].health = 40;
+  m.tick();
+  EXPECT_EQ(s.minds[0].behaviour, Behaviour::fetch);
+  EXPECT_EQ(s.minds[0].goal, (Vec2{-12, 5}));
+  int t = runUntilTaken(0, 5 * game::kTicksPerSecond);
+  EXPECT_EQ(s.pickups[0].timesTaken, 1) << "after " << t << " ticks";
+  EXPECT_EQ(s.actors[0].health, 90.0f);
+  s.actors[0].ammo[0] = 0;
+  t = runUntilTaken(1, 10 * game::kTicksPerSecond);
+  EXPECT_EQ(s.pickups[1].timesTaken, 1) << "after " << t << " ticks";
+  EXPECT_EQ(s.actors[0].ammo[0], std::min(20, s.weapons.weapons[0].ammo));
+  // Hurt again, the nearer health pack gone: the other one.
+  s.actors[0].health = 40;
+  t = runUntilTaken(2, 10 * game::kTicksPerSecond);
+  EXPECT_EQ(s.pickups[2].timesTaken, 1) << "after " << t << " ticks";
+  EXPECT_FALSE(s.pickups[0].available);
+  m.tick();
+  EXPECT_EQ(s.minds[0].behaviour, Behaviour::patrol);
+}
+
+// Hurt, with an enemy remembered but out of sight, a bot fetches health instead of chasing; out
+// of rounds, it fetches rounds even with the enemy in sight (it cannot fight), facing it.
+TEST(Behaviour, FetchesBeforeChasingAndWhenOutOfRounds) {
+  Level level = room({-10, 0}, {{0, 0}}, {{{2, -4}, {0.5f, 2}}});
+  game::LevelPickup pack;
+  pack.tiledId = 1;
+  pack.item = "health";
+  pack.amount = 50;
+  pack.respawn = 30;
+  pack.position = {10, 10};
+  level.pickups.push_back(pack);
+  pack.tiledId = 2;
+  pack.item = "ammo";
+  pack.amount = 20;
+  pack.position = {10, -10};
+  level.pickups.push_back(pack);
+  {
+    Match m(level, config(1));
+    MatchState& s = m.state();
+    s.actors[1].aim = rc::kPi;
+    runUntil(m, 1, Behaviour::attack, 10);
+    ASSERT_EQ(s.minds[1].behaviour, Behaviour::attack);
+    s.actors[1].ammo[0] = 0;
+    m.tick(kStill);
+    EXPECT_EQ(s.minds[1].behaviour, Behaviour::fetch);
+    EXPECT_EQ(s.minds[1].goal, (Vec2{10, -10}));
+    for (int k = 0; k < 10; ++k)
+      m.tick(kStill);
+    EXPECT_LT(std::fabs(angleBetween(s.actors[1].aim, angleTo(s, 1, 0))), 0.2f);
+  }
+  {
+    Match m(level, config(1));
+    MatchState& s = m.state();
+    s.actors[1].aim = rc::kPi;
+    runUntil(m, 1, Behaviour::attack, 10);
+    // The player steps behind the wall's line of sight: the bot would chase; hurt, it fetches.
+    s.world->setTransform(s.actors[0].body, {2, -12}, 0.0f);
+    s.actors[1].health = 60;  // above kHurtFraction: it chases
+    runUntil(m, 1, Behaviour::chase, game::kTicksPerSecond);
+    ASSERT_EQ(s.minds[1].behaviour, Behaviour::chase);
+    s.actors[1].health = 45;  // hurt, not by a hit it saw: no cover
+    s.minds[1].health = 45;
+    m.tick(kStill);
+    EXPECT_EQ(s.minds[1].behaviour, Behaviour::fetch);
+    EXPECT_EQ(s.minds[1].goal, (Vec2{10, 10}));
+  }
+}
+
 // investigate -> patrol when the sound is forgotten: kHeardFadeTicks after hearing it, and not
 // before (it went there and looked around, finding nothing).
 TEST(Behaviour, InvestigateFadesToPatrol) {

@@ -292,8 +292,8 @@ void Quadtree::findPairs(std::vector<ProxyPair>& pairs) const {
       pairs.push_back(self < other ? ProxyPair{self, other} : ProxyPair{other, self});
       return true;
     };
-    queryTree(moving_, m.fat, visit);
-    queryTree(static_, m.fat, visit);
+    queryTree(moving_, m.fat, m.filter, visit);
+    queryTree(static_, m.fat, m.filter, visit);
   }
   std::sort(pairs.begin(), pairs.end());
 }
@@ -306,8 +306,8 @@ void Quadtree::updatePairs(std::vector<ProxyPair>& pairs) {
       bruteAABB(m.fat, ProxyFilter{0xFFFFFFFFu, 0xFFFFFFFFu}, visit);
       return;
     }
-    queryTree(moving_, m.fat, visit);
-    if (!m.isStatic) queryTree(static_, m.fat, visit);
+    queryTree(moving_, m.fat, m.filter, visit);
+    if (!m.isStatic) queryTree(static_, m.fat, m.filter, visit);
   });
 }
 

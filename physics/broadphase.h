@@ -307,7 +307,7 @@ class Quadtree : public ProxyStore {
   Tree& treeOf(const ProxyData& p) { return p.isStatic ? static_ : moving_; }
   const Tree& treeOf(const ProxyData& p) const { return p.isStatic ? static_ : moving_; }
   template <class Visit>
-  bool queryTree(const Tree& tree, const AABB& box, Visit& visit) const;
+  bool queryTree(const Tree& tree, const AABB& box, ProxyFilter filter, Visit& visit) const;
   bool small() const { return count_ < bruteBelow_; }
 
   Vec2 origin_{};
@@ -433,17 +433,22 @@ void ProxyStore::bruteCast(const RayCastInput& in, float radius, ProxyFilter fil
 }
 
 template <class Visit>
-bool Quadtree::queryTree(const Tree& tree, const AABB& box, Visit& visit) const {
+bool Quadtree::queryTree(const Tree& tree, const AABB& box, ProxyFilter filter,
+                         Visit& visit) const {
   for (ProxyId id = tree.outside; id != kNullProxy; id = proxies_[id].next)
     if (overlaps(proxies_[id].fat, box) && !visit(id)) return false;
   for (std::uint32_t bits = tree.populated; bits != 0; bits &= bits - 1) {
     const Level& level = tree.levels[static_cast<std::size_t>(std::countr_zero(bits))];
-    // Cells whose bounds grown by the level's reach overlap the box.
+    // A level no proxy of which can pass the filter has nothing for the visit.
+    if (!level.mayPass(filter)) continue;
+    // Cells whose bounds grown by the level's reach overlap the box. Truncation is the floor
+    // from 0 up (std::floor, without SSE4.1, is a chain of conversions); below the grid is its
+    // first cell, at or beyond it the last.
     const float inv = level.invCellSize;
     const float half = level.queryMargin();
     auto index = [&](float v) {
-      float f = std::floor(v * inv);
-      return f < 0.0f                              ? 0
+      const float f = v * inv;
+      return !(f >= 0.0f)                          ? 0
              : f >= static_cast<float>(level.side) ? level.side - 1
                                                    : static_cast<int>(f);
     };
@@ -473,7 +478,7 @@ void Quadtree::queryAABB(const AABB& box, ProxyFilter filter, Visit&& visit) con
   auto filtered = [&](ProxyId id) {
     return !shouldCollide(filter, proxies_[id].filter) || visit(id);
   };
-  if (queryTree(moving_, box, filtered)) queryTree(static_, box, filtered);
+  if (queryTree(moving_, box, filter, filtered)) queryTree(static_, box, filter, filtered);
 }
 
 // What the walks of one cast share: the cast in the tree's frame (origin at the world square's

@@ -422,8 +422,10 @@ void decode(ByteReader& r, WorldState& s) {
       finite = finite && isFinite(p.point) && isFinite(p.anchorA) && isFinite(p.anchorB) &&
                std::isfinite(p.separation) && std::isfinite(c.madeSeparation[k]);
     }
-    finite =
-        finite && isFinite(Vec2{c.madeQA.c, c.madeQA.s}) && isFinite(Vec2{c.madeQB.c, c.madeQB.s});
+    // The rotations a manifold was made at are copies of its bodies' then (unit, as a body's
+    // must be): recycling turns the anchors by them, and off unit it would scale them.
+    auto unit = [](Rot q) { return std::fabs(q.c * q.c + q.s * q.s - 1.0f) < 1e-4f; };
+    finite = finite && unit(c.madeQA) && unit(c.madeQB);
     need(finite, "a contact is not finite");
   }
   // (A position floats cannot hold would overflow the step's boxes.)

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -271,6 +272,47 @@ TEST(Snapshot, CorruptBytesAreRefusedOrHarmless) {
   }
   EXPECT_GT(refused, 0);
   EXPECT_GT(taken, 0);
+}
+
+// A contact keeps the rotations its manifold was made at (copies of its bodies' then, unit as a
+// body's must be): a snapshot whose copy is off unit length (finite, 1.5 times as long) is
+// refused naming the contact, as one whose body's rotation is off is refused naming the body.
+// The rotation of a tilted static slab is in the snapshot as its body's and as the contact's
+// copy: each place is found by its bytes and changed alone.
+TEST(Snapshot, ContactRotationsOffUnitAreRefused) {
+  rc::World w;
+  rc::BodyDef slab;
+  slab.position = {0, 0};
+  slab.angle = 0.3f;
+  const BodyId ground = w.createBody(slab);
+  w.createShape(ground, rc::makeBox(5, 0.5f));
+  w.createShape(w.createBody(dynamicAt({0, 1.05f})), rc::makeCircle({}, 0.5f));
+  w.step(kStep);
+  ASSERT_EQ(w.contactCount(), 1);
+  const rc::WorldSnapshot snap = w.snapshot();
+  const rc::Rot q = w.transform(ground).q;
+  std::uint8_t pattern[8];
+  std::memcpy(pattern, &q.c, 4);
+  std::memcpy(pattern + 4, &q.s, 4);
+  const rc::Rot longer{1.5f * q.c, 1.5f * q.s};
+  int contacts = 0, bodies = 0;
+  for (std::size_t at = 0; at + 8 <= snap.size(); ++at) {
+    if (std::memcmp(&snap[at], pattern, 8) != 0) continue;
+    rc::WorldSnapshot bad = snap;
+    std::memcpy(&bad[at], &longer.c, 4);
+    std::memcpy(&bad[at + 4], &longer.s, 4);
+    rc::World target;
+    try {
+      target.restore(bad);
+      ADD_FAILURE() << "taken with the rotation at byte " << at << " 1.5 times as long";
+    } catch (const std::invalid_argument& e) {
+      const std::string m = e.what();
+      contacts += m.find("a contact") != std::string::npos;
+      bodies += m.find("a body") != std::string::npos;
+    }
+  }
+  EXPECT_GE(contacts, 1);
+  EXPECT_GE(bodies, 1);
 }
 
 TEST(Snapshot, OtherFormatsAndWorldsAreRefused) {

@@ -251,13 +251,17 @@ std::optional<rc::Vec2> neededPickup(const MatchState& s, std::size_t i, rc::Vec
     const bool wanted = (hurt && p.item == PickupItem::health) ||
                         (shortOfRounds && p.item == PickupItem::ammo && p.weapon == 0);
     if (!p.available || !wanted || !(pickupGift(s, a, p) > 0.0f)) continue;
-    if (start >= 0) {  // reachable from here (a pickup is usually on a passable cell)
+    if (start >= 0) {
+      // Reachable from here: a cell of its region from whose centre an actor touches it (the
+      // cell under it, usually; a pickup tucked into a corner may have none, and a bot sent
+      // there would wait beside it for ever).
       const std::int32_t region = s.nav.region[static_cast<std::size_t>(start)];
       const int under = s.nav.cellAt(p.position);
-      const bool reachable = s.nav.passable(under)
-                                 ? s.nav.region[static_cast<std::size_t>(under)] == region
-                                 : nearestPassable(s.nav, p.position, region) >= 0;
-      if (!reachable) continue;
+      const int cell = s.nav.passable(under) ? under : nearestPassable(s.nav, p.position, region);
+      const float touch = p.radius + s.tuning.radius;
+      if (cell < 0 || s.nav.region[static_cast<std::size_t>(cell)] != region ||
+          !(rc::distanceSquared(s.nav.center(cell), p.position) < touch * touch))
+        continue;
     }
     const float d = rc::distanceSquared(at, p.position);
     if (!best || d < bestDistance) {

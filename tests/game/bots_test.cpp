@@ -474,9 +474,10 @@ TEST(Behaviour, HurtTakesCoverOrFlees) {
 // A bot that lacks something and sees no enemy fetches the nearest pickup there that gives it:
 // hurt, the nearer of two health packs (13 m away: its goal from the first tick, taken within
 // 5 s at 4 m/s); out of rounds, the ammo pack (within 10 s). A pack already taken is passed
-// over for the other. With nothing lacking it patrols again.
+// over for the other. With nothing lacking it patrols again. A nearer pack inside a block,
+// which no actor can touch, is never its goal.
 TEST(Behaviour, FetchesThePickupItNeeds) {
-  Level level = room({-15, -15}, {{0, 0}});
+  Level level = room({-15, -15}, {{0, 0}}, {{{-5, 0}, {1, 1}}});
   auto addPickup = [&level](const std::string& item, float amount, Vec2 at) {
     game::LevelPickup p;
     p.tiledId = static_cast<std::int64_t>(level.pickups.size()) + 1;
@@ -489,12 +490,13 @@ TEST(Behaviour, FetchesThePickupItNeeds) {
   addPickup("health", 50, {-12, 5});
   addPickup("ammo", 20, {12, -5});
   addPickup("health", 50, {-14, -12});
+  addPickup("health", 50, {-5, 0});  // inside the block
   MatchConfig c = config(1);
   c.players = 0;
   Match m(std::move(level), c);
   MatchState& s = m.state();
   ASSERT_EQ(s.actors.size(), 1u);
-  ASSERT_EQ(s.pickups.size(), 3u);
+  ASSERT_EQ(s.pickups.size(), 4u);
   auto runUntilTaken = [&m, &s](std::size_t pickup, int limit) {
     int t = 0;
     while (s.pickups[pickup].timesTaken == 0 && t < limit) {
@@ -521,6 +523,7 @@ TEST(Behaviour, FetchesThePickupItNeeds) {
   t = runUntilTaken(2, 10 * game::kTicksPerSecond);
   EXPECT_EQ(s.pickups[2].timesTaken, 1) << "after " << t << " ticks";
   EXPECT_FALSE(s.pickups[0].available);
+  EXPECT_EQ(s.pickups[3].timesTaken, 0);
   m.tick();
   EXPECT_EQ(s.minds[0].behaviour, Behaviour::patrol);
 }

@@ -383,6 +383,13 @@ void World::restore(std::span<const std::uint8_t> bytes) {
 
 namespace {
 
+// A rotation of unit length (within rounding; NaN is not): what a body's must be, and a
+// contact's copies of its bodies' (recycling turns the anchors by them: off unit, it would
+// scale them).
+bool isUnit(Rot q) {
+  return std::fabs(q.c * q.c + q.s * q.s - 1.0f) < 1e-4f;
+}
+
 // The rest of the snapshot into s, checked.
 void decode(ByteReader& r, WorldState& s) {
   auto need = [&](bool ok, const char* what) {
@@ -395,11 +402,10 @@ void decode(ByteReader& r, WorldState& s) {
 
   // Every float usable, every shape a valid one.
   for (const WorldState::Body& b : s.bodies_) {
-    const float c = b.xf.q.c, sn = b.xf.q.s;
     need(isFinite(b.xf.p) && std::isfinite(b.angle) && isFinite(b.force) &&
              std::isfinite(b.torque) && std::isfinite(b.linearDamping) &&
              std::isfinite(b.angularDamping) && std::isfinite(b.gravityScale) &&
-             std::isfinite(b.sleepTime) && std::fabs(c * c + sn * sn - 1.0f) < 1e-4f,
+             std::isfinite(b.sleepTime) && isUnit(b.xf.q),
          "a body's state is not finite");
   }
   for (const WorldState::ShapeRecord& rec : s.shapes_) {
@@ -422,10 +428,7 @@ void decode(ByteReader& r, WorldState& s) {
       finite = finite && isFinite(p.point) && isFinite(p.anchorA) && isFinite(p.anchorB) &&
                std::isfinite(p.separation) && std::isfinite(c.madeSeparation[k]);
     }
-    // The rotations a manifold was made at are copies of its bodies' then (unit, as a body's
-    // must be): recycling turns the anchors by them, and off unit it would scale them.
-    auto unit = [](Rot q) { return std::fabs(q.c * q.c + q.s * q.s - 1.0f) < 1e-4f; };
-    finite = finite && unit(c.madeQA) && unit(c.madeQB);
+    finite = finite && isUnit(c.madeQA) && isUnit(c.madeQB);
     need(finite, "a contact is not finite");
   }
   // (A position floats cannot hold would overflow the step's boxes.)

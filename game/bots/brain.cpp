@@ -234,17 +234,23 @@ rc::Vec2 pickGoal(MatchState& s, rc::Vec2 at, rc::Vec2 away) {
   return nav.center(fallback);
 }
 
+// At most kHurtFraction of full health: a hit sends it to cover, and it fetches health.
+bool isHurt(const MatchState& s, const Actor& a) {
+  return a.health <= kHurtFraction * s.tuning.health;
+}
+
 // The pickup a bot goes for (fetch): the nearest (straight, ties to the lower index) that is
 // there, on the bot's part of the grid, and gives what it lacks (health when hurt, rounds of its
 // weapon when short of them); none when it lacks nothing.
 std::optional<rc::Vec2> neededPickup(const MatchState& s, std::size_t i, rc::Vec2 at) {
   const Actor& a = s.actors[i];
-  const bool hurt = a.health <= kHurtFraction * s.tuning.health;
+  const bool hurt = isHurt(s, a);
   const bool shortOfRounds = !s.weapons.weapons.empty() &&
                              static_cast<float>(a.ammo[0]) <=
                                  kLowAmmoFraction * static_cast<float>(s.weapons.weapons[0].ammo);
   if (!hurt && !shortOfRounds) return std::nullopt;
   const int start = nearestPassable(s.nav, at);
+  const std::int32_t region = start >= 0 ? s.nav.region[static_cast<std::size_t>(start)] : -1;
   std::optional<rc::Vec2> best;
   float bestDistance = 0.0f;
   for (const PickupState& p : s.pickups) {
@@ -255,7 +261,6 @@ std::optional<rc::Vec2> neededPickup(const MatchState& s, std::size_t i, rc::Vec
       // Reachable from here: a cell of its region from whose centre an actor touches it (the
       // cell under it, usually; a pickup tucked into a corner may have none, and a bot sent
       // there would wait beside it for ever).
-      const std::int32_t region = s.nav.region[static_cast<std::size_t>(start)];
       const int under = s.nav.cellAt(p.position);
       const int cell = s.nav.passable(under) ? under : nearestPassable(s.nav, p.position, region);
       const float touch = p.radius + s.tuning.radius;
@@ -287,7 +292,7 @@ Behaviour choose(MatchState& s, std::size_t i, rc::Vec2 at) {
   if (mind.focus < 0) return pickup ? fetch() : Behaviour::patrol;
   const MemoryEntry& threat = mind.memory[static_cast<std::size_t>(mind.focus)];
   const float health = s.actors[i].health;
-  if (health <= kHurtFraction * s.tuning.health) {
+  if (isHurt(s, s.actors[i])) {
     const bool hiding = mind.behaviour == Behaviour::takeCover || mind.behaviour == Behaviour::flee;
     const bool hit = health < mind.health;
     const bool blown = hiding && inSight(mind, threat) && s.tick - mind.goalTick >= kCoverTicks;

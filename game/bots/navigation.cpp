@@ -237,12 +237,12 @@ NavGrid buildNavGrid(const Level& level, const BuiltLevel& built, const rc::Worl
     if (t.action == "hurt") hurters.push_back(t.body);
   }
   const rc::QueryFilter solids = staticSolids(world);
-  const rc::QueryFilter hazards(kEverything, [&killers](const rc::ShapeRef& r) {
-    return std::find(killers.begin(), killers.end(), r.body) != killers.end();
-  });
-  const rc::QueryFilter hurts(kEverything, [&hurters](const rc::ShapeRef& r) {
-    return std::find(hurters.begin(), hurters.end(), r.body) != hurters.end();
-  });
+  auto bodiesIn = [](const std::vector<rc::BodyId>& bodies) {
+    return rc::QueryFilter(kEverything, [&bodies](const rc::ShapeRef& r) {
+      return std::find(bodies.begin(), bodies.end(), r.body) != bodies.end();
+    });
+  };
+  const rc::QueryFilter hazards = bodiesIn(killers), hurts = bodiesIn(hurters);
   const rc::Shape disc = rc::makeCircle({}, radius + kNavMargin);
   const rc::Shape wide = rc::makeCircle({}, radius + kNavMargin + kNavSpan * cell);
   // Kill zones get another cell of margin: a crowd can push a bot walking past.

@@ -51,25 +51,29 @@ void applyTriggers(MatchState& s) {
     }
   }
   // Hurt zones act on whoever is inside now, not on who entered: a tick's worth of the zone's
-  // damage for each zone an actor overlaps (its shapes against the zone's, exactly), in actor
-  // order; dying of it is a suicide. Asked of the world each tick, so nothing is kept.
-  // The query sees only actors' shapes, not the walls and props round the zone.
-  constexpr rc::ProxyFilter kActorsOnly{0xFFFFFFFFu, kActorFilter.category};
+  // damage for each zone an actor overlaps, in actor order; dying of it is a suicide. Asked of
+  // the world each tick, so nothing is kept.
   std::vector<bool> inside;
   for (const BuiltTrigger& t : s.built.triggers) {
     if (t.action != "hurt" || !(t.damagePerSecond > 0.0f)) continue;
-    inside.assign(s.actors.size(), false);
-    const rc::Transform at = s.world->transform(t.body);
-    for (const rc::ShapeId zone : s.world->shapesOf(t.body)) {
-      for (const rc::ShapeRef& r : s.world->overlapShape(s.world->shape(zone), at, kActorsOnly)) {
-        const std::optional<GameRef> actor = gameRefOf(r.bodyUserData);
-        if (actor && actor->kind == GameKind::actor && actor->index < s.actors.size())
-          inside[actor->index] = true;
-      }
-    }
+    actorsInside(s, t.body, inside);
     const float perTick = t.damagePerSecond / static_cast<float>(kTicksPerSecond);
     for (std::size_t i = 0; i < s.actors.size(); ++i)
       if (inside[i] && s.actors[i].alive) damageActor(s, i, perTick, std::nullopt);
+  }
+}
+
+void actorsInside(const MatchState& s, rc::BodyId zone, std::vector<bool>& inside) {
+  // The query sees only actors' shapes, not the walls and props round the zone.
+  constexpr rc::ProxyFilter kActorsOnly{0xFFFFFFFFu, kActorFilter.category};
+  inside.assign(s.actors.size(), false);
+  const rc::Transform at = s.world->transform(zone);
+  for (const rc::ShapeId shape : s.world->shapesOf(zone)) {
+    for (const rc::ShapeRef& r : s.world->overlapShape(s.world->shape(shape), at, kActorsOnly)) {
+      const std::optional<GameRef> actor = gameRefOf(r.bodyUserData);
+      if (actor && actor->kind == GameKind::actor && actor->index < s.actors.size())
+        inside[actor->index] = true;
+    }
   }
 }
 

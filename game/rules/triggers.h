@@ -12,10 +12,16 @@
 // Other actions do nothing.
 #pragma once
 
+#include <vector>
+
 #include "game/match/match.h"
 
 namespace game {
 
 void applyTriggers(MatchState& s);
+
+// Which actors' shapes overlap the trigger body's shapes now (exactly; the query sees only
+// actors), one flag per actor, living or not: what a hurt zone acts on.
+void actorsInside(const MatchState& s, rc::BodyId zone, std::vector<bool>& inside);
 
 }  // namespace game

@@ -20,8 +20,8 @@
 #include "game/bots/navigation.h"
 #include "game/bots/sight.h"
 #include "game/level/level_loader.h"
-#include "game/match/actors.h"
 #include "game/match/match.h"
+#include "game/rules/triggers.h"
 #include "match_test_support.h"
 #include "physics/random.h"
 #include "physics/trig.h"
@@ -38,6 +38,8 @@ using game::NavGrid;
 using game::PlayerInput;
 using rc::Vec2;
 
+using match_test_support::addPickup;
+using match_test_support::addTrigger;
 using match_test_support::Box;
 using match_test_support::config;
 using match_test_support::room;
@@ -478,19 +480,10 @@ TEST(Behaviour, HurtTakesCoverOrFlees) {
 // which no actor can touch, is never its goal.
 TEST(Behaviour, FetchesThePickupItNeeds) {
   Level level = room({-15, -15}, {{0, 0}}, {{{-5, 0}, {1, 1}}});
-  auto addPickup = [&level](const std::string& item, float amount, Vec2 at) {
-    game::LevelPickup p;
-    p.tiledId = static_cast<std::int64_t>(level.pickups.size()) + 1;
-    p.item = item;
-    p.amount = amount;
-    p.respawn = 30;
-    p.position = at;
-    level.pickups.push_back(p);
-  };
-  addPickup("health", 50, {-12, 5});
-  addPickup("ammo", 20, {12, -5});
-  addPickup("health", 50, {-14, -12});
-  addPickup("health", 50, {-5, 0});  // inside the block
+  addPickup(level, "health", 50, 30, {-12, 5});
+  addPickup(level, "ammo", 20, 30, {12, -5});
+  addPickup(level, "health", 50, 30, {-14, -12});
+  addPickup(level, "health", 50, 30, {-5, 0});  // inside the block
   MatchConfig c = config(1);
   c.players = 0;
   Match m(std::move(level), c);
@@ -532,18 +525,8 @@ TEST(Behaviour, FetchesThePickupItNeeds) {
 // of rounds, it fetches rounds even with the enemy in sight (it cannot fight), facing it.
 TEST(Behaviour, FetchesBeforeChasingAndWhenOutOfRounds) {
   Level level = room({-10, 0}, {{0, 0}}, {{{2, -4}, {0.5f, 2}}});
-  game::LevelPickup pack;
-  pack.tiledId = 1;
-  pack.item = "health";
-  pack.amount = 50;
-  pack.respawn = 30;
-  pack.position = {10, 10};
-  level.pickups.push_back(pack);
-  pack.tiledId = 2;
-  pack.item = "ammo";
-  pack.amount = 20;
-  pack.position = {10, -10};
-  level.pickups.push_back(pack);
+  addPickup(level, "health", 50, 30, {10, 10});
+  addPickup(level, "ammo", 20, 30, {10, -10});
   {
     Match m(level, config(1));
     MatchState& s = m.state();
@@ -722,12 +705,7 @@ TEST(Navigation, AStarAgainstDijkstraOnRandomGrids) {
 // (and a margin round it) are hazards. A smoothed path round the trigger keeps to roomy cells.
 TEST(Navigation, LevelGridFromWallsAndKillZones) {
   Level level = room({-15, -15}, {}, {{{5, 0}, {0.5f, 3}}});
-  game::LevelObject pit;
-  pit.kind = game::LevelObjectKind::trigger;
-  pit.position = {-5, 5};
-  pit.shapes.push_back(rc::makeBox(1, 1));
-  level.objects.push_back(pit);
-  level.triggers.push_back({level.objects.size() - 1, "kill"});
+  addTrigger(level, {-5, 5}, rc::makeBox(1, 1), {0, "kill"});
   Match m(level, config(0));
   const NavGrid& g = m.state().nav;
   EXPECT_EQ(g.width, 81);
@@ -783,16 +761,8 @@ TEST(Navigation, LevelGridFromWallsAndKillZones) {
 // and its margins are thick.
 TEST(Navigation, HurtZonesCostMoreAndAreWalkedRound) {
   Level level = room({-15, -15}, {});
-  auto addHurt = [&level](Vec2 at, Vec2 half) {
-    game::LevelObject zone;
-    zone.kind = game::LevelObjectKind::trigger;
-    zone.position = at;
-    zone.shapes.push_back(rc::makeBox(half.x, half.y));
-    level.objects.push_back(zone);
-    level.triggers.push_back({level.objects.size() - 1, "hurt"});
-  };
-  addHurt({-8, 0}, {1, 3});  // short: a way round above and below
-  addHurt({8, 0}, {1, 20});  // from wall to wall
+  addTrigger(level, {-8, 0}, rc::makeBox(1, 3), {0, "hurt"});  // short: a way round
+  addTrigger(level, {8, 0}, rc::makeBox(1, 20), {0, "hurt"});  // from wall to wall
   Match m(level, config(0));
   const NavGrid& g = m.state().nav;
   const float clear = m.state().tuning.radius + game::kNavMargin;
@@ -857,18 +827,12 @@ TEST(Navigation, BotsKeepOutOfTheArenasHurtZone) {
   c.seed = 1;
   std::int64_t inside = 0;
   c.testHook = [&inside](MatchState& s) {
-    constexpr rc::ProxyFilter kActorsOnly{0xFFFFFFFFu, game::kActorFilter.category};
+    std::vector<bool> in;
     for (const game::BuiltTrigger& t : s.built.triggers) {
       if (t.action != "hurt") continue;
-      std::vector<bool> in(s.actors.size());
-      const rc::Transform at = s.world->transform(t.body);
-      for (const rc::ShapeId zone : s.world->shapesOf(t.body))
-        for (const rc::ShapeRef& r : s.world->overlapShape(s.world->shape(zone), at, kActorsOnly)) {
-          const std::optional<game::GameRef> a = game::gameRefOf(r.bodyUserData);
-          if (a && a->kind == game::GameKind::actor && s.actors[a->index].alive)
-            in[a->index] = true;
-        }
-      inside += std::count(in.begin(), in.end(), true);
+      game::actorsInside(s, t.body, in);
+      for (std::size_t i = 0; i < in.size(); ++i)
+        inside += in[i] && s.actors[i].alive;
     }
   };
   Match m(game::loadLevel(std::string(RICOCHET_SOURCE_DIR) + "/assets/levels/arena.tmj"), c);

@@ -145,13 +145,7 @@ TEST(Rules, DeathAndRespawnAtTheFarthestSpawn) {
 // (trigger.object is set here).
 Level roomWithZone(const rc::Shape& shape, game::LevelTrigger trigger) {
   Level level = room({-5, 0}, {});
-  game::LevelObject zone;
-  zone.kind = game::LevelObjectKind::trigger;
-  zone.position = {0, 0};
-  zone.shapes.push_back(shape);
-  level.objects.push_back(zone);
-  trigger.object = level.objects.size() - 1;
-  level.triggers.push_back(trigger);
+  match_test_support::addTrigger(level, {0, 0}, shape, trigger);
   return level;
 }
 

@@ -66,6 +66,37 @@ inline game::Level room(rc::Vec2 player, const std::vector<rc::Vec2>& bots,
   return level;
 }
 
+// A pickup (Tiled id in order of adding), of the weapon named when it is ammo for another than
+// the table's first.
+inline void addPickup(game::Level& level, const std::string& item, float amount, float respawn,
+                      rc::Vec2 at, const std::string& weapon = "") {
+  game::LevelPickup p;
+  p.tiledId = static_cast<std::int64_t>(level.pickups.size()) + 1;
+  p.item = item;
+  p.amount = amount;
+  p.respawn = respawn;
+  p.position = at;
+  if (!weapon.empty()) {
+    game::TiledProperty prop;
+    prop.name = "weapon";
+    prop.text = weapon;
+    p.properties.list.push_back(prop);
+  }
+  level.pickups.push_back(p);
+}
+
+// A trigger zone of `shape` at `at`, acting as `trigger` says (its object index is set here).
+inline void addTrigger(game::Level& level, rc::Vec2 at, const rc::Shape& shape,
+                       game::LevelTrigger trigger) {
+  game::LevelObject zone;
+  zone.kind = game::LevelObjectKind::trigger;
+  zone.position = at;
+  zone.shapes.push_back(shape);
+  level.objects.push_back(zone);
+  trigger.object = level.objects.size() - 1;
+  level.triggers.push_back(trigger);
+}
+
 inline game::MatchConfig config(int bots, std::uint64_t seed = 1) {
   game::MatchConfig c;
   c.bots = bots;

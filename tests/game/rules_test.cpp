@@ -30,6 +30,7 @@ using game::MatchConfig;
 using game::PlayerInput;
 using rc::Vec2;
 
+using match_test_support::addPickup;
 using match_test_support::bundled;
 using match_test_support::emptyLevel;
 
@@ -61,23 +62,6 @@ std::size_t addCrate(Level& level, Vec2 at, LevelMaterial m = {}, float damping 
   o.shapes.push_back(rc::makeBox(0.5f, 0.5f));
   level.objects.push_back(o);
   return level.objects.size() - 1;
-}
-
-void addPickup(Level& level, const std::string& item, float amount, float respawn, Vec2 at,
-               const std::string& weapon = "") {
-  game::LevelPickup p;
-  p.tiledId = static_cast<std::int64_t>(level.pickups.size()) + 1;
-  p.item = item;
-  p.amount = amount;
-  p.respawn = respawn;
-  p.position = at;
-  if (!weapon.empty()) {
-    game::TiledProperty prop;
-    prop.name = "weapon";
-    prop.text = weapon;
-    p.properties.list.push_back(prop);
-  }
-  level.pickups.push_back(p);
 }
 
 // Bots decide for themselves (they walk and shoot): tests that want actors to stand still use

@@ -5,9 +5,9 @@
 //   patrol       nothing remembered: walk between the level's patrol points (its spawns,
 //                pickups, markers and path points, and open places spread between them), along
 //                grid paths (navigation.h)
-//   fetch        hurt (at most kHurtFraction of full health) or short of rounds (at most
-//                kLowAmmoFraction of a spawn's), and no enemy in sight (or none remembered; or
-//                out of rounds altogether): walk to the nearest pickup there that gives what it
+//   fetch        hurt (at most kHurtFraction of full health) or short of rounds (every gun at
+//                most kLowAmmoFraction of a spawn's), and no enemy in sight (or none remembered;
+//                or out of rounds altogether): walk to the nearest pickup there that gives what it
 //                lacks (a bot knows the map: where pickups are and whether they are there now),
 //                facing the way it walks, or the enemy it remembers
 //   investigate  the strongest memory is a sound: walk to where it came from, facing it; once
@@ -16,7 +16,8 @@
 //                should be by now, facing it; now and then a grenade goes there first (never
 //                near a friend: a team knows where its own are)
 //   attack       the strongest memory is an enemy in sight: shoot at it with aim error (never
-//                through a friend), keeping a fighting distance and sidestepping
+//                through a friend), with the gun that deals the most at that distance of those
+//                with rounds left, keeping a fighting distance and sidestepping
 //   take cover   hurt (at most kHurtFraction of full health), hit again and an enemy
 //                remembered: go to the nearest place it cannot see (cover.h), face it, fire
 //                back when it shows; after kHideTicks (health does not come back) it fights on
@@ -39,6 +40,7 @@
 #include "game/bots/navigation.h"
 #include "game/bots/sight.h"
 #include "game/rules/pickups.h"
+#include "game/weapons/hitscan.h"
 #include "physics/trig.h"
 
 namespace game {
@@ -239,15 +241,55 @@ bool isHurt(const MatchState& s, const Actor& a) {
   return a.health <= kHurtFraction * s.tuning.health;
 }
 
+bool isGun(const WeaponSpec& weapon) {
+  return weapon.kind == WeaponKind::hitscan;
+}
+
+// Short of rounds: it has guns and each has at most kLowAmmoFraction of a spawn's rounds left
+// (a full shotgun still fights when the rifle is low). Out of rounds: none has any.
+bool isShortOfRounds(const MatchState& s, const Actor& a) {
+  bool guns = false;
+  for (std::size_t w = 0; w < s.weapons.weapons.size(); ++w) {
+    const WeaponSpec& weapon = s.weapons.weapons[w];
+    if (!isGun(weapon)) continue;
+    guns = true;
+    if (static_cast<float>(a.ammo[w]) > kLowAmmoFraction * static_cast<float>(weapon.ammo))
+      return false;
+  }
+  return guns;
+}
+bool isOutOfRounds(const MatchState& s, const Actor& a) {
+  for (std::size_t w = 0; w < s.weapons.weapons.size(); ++w)
+    if (isGun(s.weapons.weapons[w]) && a.ammo[w] > 0) return false;
+  return true;
+}
+
+// The gun it fires at an enemy `distance` m away: of those with rounds left, the one that deals
+// the most a tick there to an actor (expectedDamagePerTick), ties to the lower index; where none
+// reaches, the one reaching farthest. With no rounds at all, the one it holds (it fires nothing).
+std::uint8_t chooseGun(const MatchState& s, const Actor& a, float distance) {
+  std::uint8_t best = a.input.weapon;
+  float bestDamage = -1.0f, bestRange = 0.0f;
+  for (std::size_t w = 0; w < s.weapons.weapons.size(); ++w) {
+    const WeaponSpec& weapon = s.weapons.weapons[w];
+    if (!isGun(weapon) || a.ammo[w] <= 0) continue;
+    const float damage = expectedDamagePerTick(weapon, distance, s.tuning.radius);
+    if (damage > bestDamage || (damage == bestDamage && weapon.hitscan.range > bestRange)) {
+      best = static_cast<std::uint8_t>(w);
+      bestDamage = damage;
+      bestRange = weapon.hitscan.range;
+    }
+  }
+  return best;
+}
+
 // The pickup a bot goes for (fetch): the nearest (straight, ties to the lower index) that is
-// there, on the bot's part of the grid, and gives what it lacks (health when hurt, rounds of its
-// weapon when short of them); none when it lacks nothing.
+// there, on the bot's part of the grid, and gives what it lacks (health when hurt, rounds of a
+// gun when short of them); none when it lacks nothing.
 std::optional<rc::Vec2> neededPickup(const MatchState& s, std::size_t i, rc::Vec2 at) {
   const Actor& a = s.actors[i];
   const bool hurt = isHurt(s, a);
-  const bool shortOfRounds = !s.weapons.weapons.empty() &&
-                             static_cast<float>(a.ammo[0]) <=
-                                 kLowAmmoFraction * static_cast<float>(s.weapons.weapons[0].ammo);
+  const bool shortOfRounds = isShortOfRounds(s, a);
   if (!hurt && !shortOfRounds) return std::nullopt;
   const int start = nearestPassable(s.nav, at);
   const std::int32_t region = start >= 0 ? s.nav.region[static_cast<std::size_t>(start)] : -1;
@@ -255,7 +297,8 @@ std::optional<rc::Vec2> neededPickup(const MatchState& s, std::size_t i, rc::Vec
   float bestDistance = 0.0f;
   for (const PickupState& p : s.pickups) {
     const bool wanted = (hurt && p.item == PickupItem::health) ||
-                        (shortOfRounds && p.item == PickupItem::ammo && p.weapon == 0);
+                        (shortOfRounds && p.item == PickupItem::ammo &&
+                         p.weapon < s.weapons.weapons.size() && isGun(s.weapons.weapons[p.weapon]));
     if (!p.available || !wanted || !(pickupGift(s, a, p) > 0.0f)) continue;
     if (start >= 0) {
       // Reachable from here: a cell of its region from whose centre an actor touches it (the
@@ -306,7 +349,7 @@ Behaviour choose(MatchState& s, std::size_t i, rc::Vec2 at) {
     if (hiding && s.tick - mind.behaviourSince < kHideTicks) return mind.behaviour;
   }
   // Out of rounds, it cannot fight; short of them or hurt, it fetches while nothing is in sight.
-  if (pickup && s.actors[i].ammo[0] == 0) return fetch();
+  if (pickup && isOutOfRounds(s, s.actors[i])) return fetch();
   if (inSight(mind, threat)) return Behaviour::attack;
   if (pickup) return fetch();
   return threat.sense == Sense::seen ? Behaviour::chase : Behaviour::investigate;
@@ -394,6 +437,7 @@ PlayerInput decide(MatchState& s, std::size_t i) {
   rc::Vec2 move{};
   float aim = a.aim;
   std::uint8_t buttons = 0;
+  std::uint8_t weapon = a.input.weapon;  // the one it held, until it fights
   switch (mind.behaviour) {
     case Behaviour::patrol: {
       const bool reached =
@@ -444,6 +488,7 @@ PlayerInput decide(MatchState& s, std::size_t i) {
       const float error = kAimError + kAimErrorPerSpeed * rc::length(threat->velocity);
       const float exact = angleOf(d);
       aim = turnToward(a.aim, exact + s.rng.uniform(-error, error));
+      weapon = chooseGun(s, a, distance);
       if (std::fabs(wrapAngle(exact - aim)) < kFireCone && clearOfFriends(s, i, at, target))
         buttons = kButtonFire;
       break;
@@ -462,6 +507,7 @@ PlayerInput decide(MatchState& s, std::size_t i) {
       move = steer(s, i, at, mind.goal);
       const rc::Vec2 d = threat->position - at;
       aim = turnToward(a.aim, angleOf(d));
+      weapon = chooseGun(s, a, rc::length(d));
       if (inSight(mind, *threat) && std::fabs(wrapAngle(angleOf(d) - aim)) < kFireCone &&
           clearOfFriends(s, i, at, threat->position))
         buttons = kButtonFire;
@@ -472,7 +518,7 @@ PlayerInput decide(MatchState& s, std::size_t i) {
   const bool barelyMoving = rc::lengthSquared(s.world->linearVelocity(a.body)) < 0.25f;
   mind.stuckTicks = move != rc::Vec2{} && barelyMoving ? mind.stuckTicks + 1 : 0;
   if (move != rc::Vec2{}) move = keepApart(s, i, at, move);
-  return makeInput(move, aim, buttons, 0);
+  return makeInput(move, aim, buttons, weapon);
 }
 
 // What the actor perceives this tick: the last tick's sounds, and a look when its turn comes.

@@ -1,10 +1,12 @@
 #include "game/weapons/hitscan.h"
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <vector>
 
 #include "game/rules/damage.h"
+#include "physics/trig.h"
 
 namespace game {
 namespace {
@@ -83,6 +85,19 @@ float falloffAt(const HitscanSpec& weapon, float distance) {
 
 float damageAt(const HitscanSpec& weapon, float distance) {
   return weapon.damage * falloffAt(weapon, distance);
+}
+
+float expectedDamagePerTick(const WeaponSpec& weapon, float distance, float radius) {
+  const HitscanSpec& w = weapon.hitscan;
+  if (weapon.kind != WeaponKind::hitscan || !(distance <= w.range)) return 0.0f;
+  float share = 1.0f;
+  if (w.spread > 0.0f && distance > radius) {
+    // asin(r / d) by our own atan2: what feeds the simulation never comes from libm.
+    const float half = rc::atan2(radius, std::sqrt(distance * distance - radius * radius));
+    share = std::min(1.0f, half / w.spread);
+  }
+  return static_cast<float>(w.pellets) * damageAt(w, distance) * share /
+         static_cast<float>(std::max(1, weapon.cooldownTicks));
 }
 
 void traceShot(MatchState& s, std::size_t shooter, std::size_t weapon, int pellet, rc::Vec2 from,

@@ -45,6 +45,13 @@ std::optional<RayExit> exitOf(const rc::World& world, const rc::WorldHit& entry,
 float falloffAt(const HitscanSpec& weapon, float distance);
 float damageAt(const HitscanSpec& weapon, float distance);
 
+// What a weapon deals a tick, on average, to a disc of `radius` m at `distance` m aimed at its
+// centre (a bot's choice of gun): each pellet's damage there, times the share of the pellets
+// that meet the disc (they leave uniformly within the spread either side of the aim; the disc
+// covers asin(radius / distance) either side), over the cooldown. Zero for a grenade and beyond
+// the range. Penetration and ricochets are not counted: an aimed shot meets the disc first.
+float expectedDamagePerTick(const WeaponSpec& weapon, float distance, float radius);
+
 // One shot (one pellet) of hitscan weapon `weapon` from `from` along the unit vector `dir`,
 // the shooter's own body ignored: traced, its effects applied, recorded in MatchState::shots.
 void traceShot(MatchState& s, std::size_t shooter, std::size_t weapon, int pellet, rc::Vec2 from,

@@ -22,6 +22,7 @@
 #include "game/level/level_loader.h"
 #include "game/match/match.h"
 #include "game/rules/triggers.h"
+#include "game/weapons/hitscan.h"
 #include "match_test_support.h"
 #include "physics/random.h"
 #include "physics/trig.h"
@@ -507,7 +508,11 @@ TEST(Behaviour, FetchesThePickupItNeeds) {
   int t = runUntilTaken(0, 5 * game::kTicksPerSecond);
   EXPECT_EQ(s.pickups[0].timesTaken, 1) << "after " << t << " ticks";
   EXPECT_EQ(s.actors[0].health, 90.0f);
+  // The rifle empty and the shotgun full, it is not short of rounds; both low, it is.
   s.actors[0].ammo[0] = 0;
+  m.tick();
+  EXPECT_EQ(s.minds[0].behaviour, Behaviour::patrol);
+  s.actors[0].ammo[1] = s.weapons.weapons[1].ammo / 4;
   t = runUntilTaken(1, 10 * game::kTicksPerSecond);
   EXPECT_EQ(s.pickups[1].timesTaken, 1) << "after " << t << " ticks";
   EXPECT_EQ(s.actors[0].ammo[0], std::min(20, s.weapons.weapons[0].ammo));
@@ -522,7 +527,8 @@ TEST(Behaviour, FetchesThePickupItNeeds) {
 }
 
 // Hurt, with an enemy remembered but out of sight, a bot fetches health instead of chasing; out
-// of rounds, it fetches rounds even with the enemy in sight (it cannot fight), facing it.
+// of rounds (every gun empty), it fetches rounds even with the enemy in sight (it cannot fight),
+// facing it.
 TEST(Behaviour, FetchesBeforeChasingAndWhenOutOfRounds) {
   Level level = room({-10, 0}, {{0, 0}}, {{{2, -4}, {0.5f, 2}}});
   addPickup(level, "health", 50, 30, {10, 10});
@@ -534,6 +540,7 @@ TEST(Behaviour, FetchesBeforeChasingAndWhenOutOfRounds) {
     runUntil(m, 1, Behaviour::attack, 10);
     ASSERT_EQ(s.minds[1].behaviour, Behaviour::attack);
     s.actors[1].ammo[0] = 0;
+    s.actors[1].ammo[1] = 0;
     m.tick(kStill);
     EXPECT_EQ(s.minds[1].behaviour, Behaviour::fetch);
     EXPECT_EQ(s.minds[1].goal, (Vec2{10, -10}));
@@ -557,6 +564,56 @@ TEST(Behaviour, FetchesBeforeChasingAndWhenOutOfRounds) {
     EXPECT_EQ(s.minds[1].behaviour, Behaviour::fetch);
     EXPECT_EQ(s.minds[1].goal, (Vec2{10, 10}));
   }
+}
+
+// A bot fights with the gun that deals the most at the distance (expectedDamagePerTick) among
+// those with rounds left. With the bundled table the rifle, at any distance; the rifle empty,
+// the shotgun (it fires: its rounds go down, where before it pulled an empty trigger). With a
+// shotgun that fires as fast as the rifle: the rifle 15 m away, the shotgun 4 m away, the rifle
+// again once the shotgun is empty.
+TEST(Behaviour, FightsWithTheGunThatDealsTheMost) {
+  const auto inRange = [](MatchState& s, Match& m, Vec2 at) {
+    s.world->setTransform(s.actors[0].body, at, 0);
+    for (int k = 0; k <= game::kLookEvery; ++k)
+      m.tick(kStill);
+    return s.actors[1].input.weapon;
+  };
+  {
+    Match m(room({-10, 0}, {{0, 0}}), config(1));
+    MatchState& s = m.state();
+    s.actors[1].aim = rc::kPi;
+    runUntil(m, 1, Behaviour::attack, 10);
+    ASSERT_EQ(s.minds[1].behaviour, Behaviour::attack);
+    EXPECT_EQ(inRange(s, m, {-8, 0}), 0);
+    EXPECT_EQ(inRange(s, m, {-4, 0}), 0);
+    s.actors[1].ammo[0] = 0;
+    const int rounds = s.actors[1].ammo[1];
+    for (int k = 0; k < 2 * game::kTicksPerSecond && s.actors[1].ammo[1] == rounds; ++k) {
+      s.actors[0].health = s.tuning.health;  // the target stays
+      m.tick(kStill);
+    }
+    EXPECT_EQ(s.minds[1].behaviour, Behaviour::attack);
+    EXPECT_EQ(s.actors[1].input.weapon, 1);
+    EXPECT_EQ(s.actors[1].ammo[1], rounds - 1);
+  }
+  game::WeaponTable fast = match_test_support::bundled();
+  fast.weapons[1].cooldownTicks = fast.weapons[0].cooldownTicks;
+  MatchConfig c = config(1);
+  c.weapons = fast;
+  Match m(room({-15, 0}, {{0, 0}}), c);
+  MatchState& s = m.state();
+  s.actors[1].aim = rc::kPi;
+  runUntil(m, 1, Behaviour::attack, 10);
+  ASSERT_EQ(s.minds[1].behaviour, Behaviour::attack);
+  const float radius = s.tuning.radius;
+  EXPECT_GT(game::expectedDamagePerTick(fast.weapons[0], 15, radius),
+            game::expectedDamagePerTick(fast.weapons[1], 15, radius));
+  EXPECT_LT(game::expectedDamagePerTick(fast.weapons[0], 4, radius),
+            game::expectedDamagePerTick(fast.weapons[1], 4, radius));
+  EXPECT_EQ(inRange(s, m, {-15, 0}), 0);
+  EXPECT_EQ(inRange(s, m, {-4, 0}), 1);
+  s.actors[1].ammo[1] = 0;
+  EXPECT_EQ(inRange(s, m, {-4, 0}), 0);
 }
 
 // investigate -> patrol when the sound is forgotten: kHeardFadeTicks after hearing it, and not

@@ -324,6 +324,49 @@ TEST(Shotgun, SeededPatternWithinTheCone) {
   EXPECT_GT(most, 0.99f * shotgun.spread);
 }
 
+// What a bot expects of a gun (expectedDamagePerTick) against what the tracer deals: the
+// bundled shotgun fired 400 times at an actor 3 m away (every pellet meets it: 80 a shot) and
+// 4.5 m away, where asin(r / d) covers 0.744 of the spread: the mean damage a shot within 4%
+// of the expected times the cooldown (the pellets that meet it are binomial: one standard
+// deviation is 1% of the mean). Both inside the falloff's start, where each pellet deals its
+// full damage. The rifle by closed form: its damage over its cooldown, the falloff's share at
+// 40 m, nothing past its range; a grenade nothing.
+TEST(Shotgun, ExpectedDamageIsWhatTheTracerDeals) {
+  const game::WeaponSpec& shotgun = bundled().weapons[1];
+  ASSERT_GT(shotgun.hitscan.falloffStart, 4.5f);
+  for (const float d : {3.0f, 4.5f}) {
+    Level level = emptyLevel();
+    addSpawn(level, game::SpawnKind::player, {0, 0});
+    addSpawn(level, game::SpawnKind::bot, {d, 0});
+    Match m(level, config(1, 7));
+    game::MatchState& s = m.state();
+    ASSERT_EQ(s.actors.size(), 2u);
+    s.actors[0].aim = 0.0f;
+    const int shots = 400;
+    double dealt = 0;
+    for (int k = 0; k < shots; ++k) {
+      s.actors[1].health = s.tuning.health;
+      s.shots.clear();
+      game::firePellets(s, 0, 1);
+      dealt += s.tuning.health - s.actors[1].health;
+    }
+    const float expected = game::expectedDamagePerTick(shotgun, d, s.tuning.radius) *
+                           static_cast<float>(shotgun.cooldownTicks);
+    const float share = std::min(1.0f, std::asin(s.tuning.radius / d) / shotgun.hitscan.spread);
+    EXPECT_NEAR(expected,
+                static_cast<float>(shotgun.hitscan.pellets) * shotgun.hitscan.damage * share, 1e-3f)
+        << d;
+    EXPECT_NEAR(dealt / shots, expected, 0.04 * expected) << d;
+  }
+  const game::WeaponSpec& gun = bundled().weapons[0];
+  const float perTick = gun.hitscan.damage / static_cast<float>(gun.cooldownTicks);
+  EXPECT_FLOAT_EQ(game::expectedDamagePerTick(gun, 10, 0.35f), perTick);
+  EXPECT_FLOAT_EQ(game::expectedDamagePerTick(gun, 40, 0.35f),
+                  perTick * game::falloffAt(gun.hitscan, 40));
+  EXPECT_EQ(game::expectedDamagePerTick(gun, gun.hitscan.range + 1, 0.35f), 0.0f);
+  EXPECT_EQ(game::expectedDamagePerTick(bundled().weapons[2], 10, 0.35f), 0.0f);
+}
+
 // The bundled grenade with no damping (top-down, damping is its rolling on the floor; over the
 // ticks measured it would blur e) and a long fuse.
 game::WeaponTable bounceTable() {

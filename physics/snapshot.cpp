@@ -389,6 +389,11 @@ namespace {
 bool isUnit(Rot q) {
   return std::fabs(q.c * q.c + q.s * q.s - 1.0f) < 1e-4f;
 }
+// A touching manifold's normal likewise (every collide function normalizes it; the solver's
+// tangent and effective masses assume it): off unit it would scale every impulse it carries.
+bool isUnit(Vec2 n) {
+  return std::fabs(n.x * n.x + n.y * n.y - 1.0f) < 1e-4f;
+}
 
 // The rest of the snapshot into s, checked.
 void decode(ByteReader& r, WorldState& s) {
@@ -428,8 +433,9 @@ void decode(ByteReader& r, WorldState& s) {
       finite = finite && isFinite(p.point) && isFinite(p.anchorA) && isFinite(p.anchorB) &&
                std::isfinite(p.separation) && std::isfinite(c.madeSeparation[k]);
     }
-    finite = finite && isUnit(c.madeQA) && isUnit(c.madeQB);
-    need(finite, "a contact is not finite");
+    finite = finite && isUnit(c.madeQA) && isUnit(c.madeQB) &&
+             (c.manifold.pointCount == 0 || isUnit(c.manifold.normal));
+    need(finite, "a contact is not finite, or its normal or rotations are not of unit length");
   }
   // (A position floats cannot hold would overflow the step's boxes.)
   for (std::size_t k = 0; k < s.q_.size(); ++k)

@@ -315,6 +315,40 @@ TEST(Snapshot, ContactRotationsOffUnitAreRefused) {
   EXPECT_GE(bodies, 1);
 }
 
+// A touching contact's normal off unit length (1.5 times as long) is refused too: the solver's
+// tangent and effective masses assume a unit normal.
+TEST(Snapshot, ContactNormalsOffUnitAreRefused) {
+  rc::World w;
+  rc::BodyDef slab;
+  slab.angle = 0.3f;
+  w.createShape(w.createBody(slab), rc::makeBox(5, 0.5f));
+  w.createShape(w.createBody(dynamicAt({0, 1.05f})), rc::makeCircle({}, 0.5f));
+  w.step(kStep);
+  ASSERT_EQ(w.touchingContactCount(), 1);
+  const rc::WorldSnapshot snap = w.snapshot();
+  const rc::Vec2 n = w.contactPoints().at(0).normal;
+  std::uint8_t pattern[8];
+  std::memcpy(pattern, &n.x, 4);
+  std::memcpy(pattern + 4, &n.y, 4);
+  const rc::Vec2 longer = 1.5f * n;
+  int refused = 0;
+  for (std::size_t at = 0; at + 8 <= snap.size(); ++at) {
+    if (std::memcmp(&snap[at], pattern, 8) != 0) continue;
+    rc::WorldSnapshot bad = snap;
+    std::memcpy(&bad[at], &longer.x, 4);
+    std::memcpy(&bad[at + 4], &longer.y, 4);
+    rc::World target;
+    try {
+      target.restore(bad);
+    } catch (const std::invalid_argument& e) {
+      refused += std::string(e.what()).find("a contact") != std::string::npos;
+    }
+  }
+  EXPECT_EQ(refused, 1);
+  rc::World same;
+  EXPECT_NO_THROW(same.restore(snap));
+}
+
 TEST(Snapshot, OtherFormatsAndWorldsAreRefused) {
   rc::World w;
   w.createShape(w.createBody(dynamicAt({0, 1})), rc::makeCircle({}, 0.5f));

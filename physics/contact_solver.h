@@ -26,8 +26,9 @@
 namespace rc {
 
 // One point of a touching contact, prepared for the substeps. The caller sets the anchors, the
-// separation, the carried impulses and relativeVelocity (maxNormalImpulse starts at 0); the
-// solver derives the lever arms and effective masses, eight (or four) constraints at a time.
+// separation and the carried impulses (maxNormalImpulse and relativeVelocity start at 0: the
+// warm start sets a point's approach speed until the solver first pushes it); the solver
+// derives the lever arms and effective masses, eight (or four) constraints at a time.
 struct ConstraintPoint {
   Vec2 rA, rB;  // anchors from the centres of mass at the start of the step
   // Derived: rA x n, rB x n, rA x t, rB x t: a point's velocity along n is dot(vB - vA, n) +
@@ -36,7 +37,7 @@ struct ConstraintPoint {
   float baseSeparation;
   float normalMass, tangentMass;  // derived
   float normalImpulse, tangentImpulse, maxNormalImpulse;
-  float relativeVelocity;  // normal velocity before the solve, for restitution
+  float relativeVelocity;  // normal velocity before the solve, for restitution (see warmStart)
 };
 
 struct ContactConstraint {

@@ -165,14 +165,6 @@ void WorldState::prepareContacts() {
     }
     cc.pointCount = c.manifold.pointCount;
     const Vec2 offsetA = rotate(a.xf.q, a.localCenter), offsetB = rotate(b.xf.q, b.localCenter);
-    const Vec2 vA = cc.slotA >= 0 ? Vec2{v_[3 * static_cast<std::size_t>(cc.slotA)],
-                                         v_[3 * static_cast<std::size_t>(cc.slotA) + 1]}
-                                  : Vec2{};
-    const float wA = cc.slotA >= 0 ? v_[3 * static_cast<std::size_t>(cc.slotA) + 2] : 0.0f;
-    const Vec2 vB = cc.slotB >= 0 ? Vec2{v_[3 * static_cast<std::size_t>(cc.slotB)],
-                                         v_[3 * static_cast<std::size_t>(cc.slotB) + 1]}
-                                  : Vec2{};
-    const float wB = cc.slotB >= 0 ? v_[3 * static_cast<std::size_t>(cc.slotB) + 2] : 0.0f;
     // A recycled manifold's anchors are where its points were on each body when it was made:
     // turned with the bodies since.
     const Rot dqA = c.recycled ? invMul(c.madeQA, a.xf.q) : Rot{};
@@ -185,9 +177,10 @@ void WorldState::prepareContacts() {
       p.baseSeparation = mp.separation;
       p.normalImpulse = c.normalImpulse[k];
       p.tangentImpulse = c.tangentImpulse[k];
+      // Not pushed yet: the first warm start sets every point's approach speed from the
+      // substep's free motion (restitution reads nothing else; without it nothing reads it).
       p.maxNormalImpulse = 0.0f;
-      const Vec2 dv = (vB + cross(wB, p.rB)) - (vA + cross(wA, p.rA));
-      p.relativeVelocity = dot(dv, cc.normal);
+      p.relativeVelocity = 0.0f;
     }
     contactSolver_.set(i, cc);
     if (cc.restitution != 0.0f) {

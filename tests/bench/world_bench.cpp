@@ -10,8 +10,9 @@
 //                20 m/s. Counter: bullets that left the arena (escapes: the centre more than
 //                the radius past a wall's inner face). Time per step.
 //   pyramid/B    touching 1 m boxes, base B, friction 0.6, on a static ground box, gravity -10,
-//                1000 steps, sleeping off (and again with sleeping on in both engines). Counter:
-//                the top box's drift from its exact resting height (m). Time per step.
+//                1000 steps, sleeping off (and again with sleeping on in both engines). Counters:
+//                the top box's drift from its exact resting height and its creep sideways from
+//                where it was placed (m). Time per step.
 // What a scene lacks costs nothing (the rows to read against arena/N=1000 and pyramid/base 20):
 //   arena, 20k static boxes outside   20,000 more static boxes beyond the walls
 //   arena, continuous off             no continuous collision in either engine
@@ -59,7 +60,7 @@ void runArena(benchmark::State& state, const SceneDesc& scene, int steps) {
 
 template <class Engine>
 void runPyramid(benchmark::State& state, const SceneDesc& scene, int steps) {
-  double drift = 0;
+  double drift = 0, creep = 0;
   for (auto _ : state) {
     state.PauseTiming();
     Engine engine(scene);
@@ -71,10 +72,12 @@ void runPyramid(benchmark::State& state, const SceneDesc& scene, int steps) {
     state.PauseTiming();
     const Vec2 top = engine.position(scene.bodies.size() - 1);
     drift += std::abs(top.y - scene.bodies.back().position.y);
+    creep += std::abs(top.x - scene.bodies.back().position.x);
     state.ResumeTiming();
   }
   state.SetItemsProcessed(state.iterations() * steps);
   state.counters["top_drift_m"] = drift / static_cast<double>(state.iterations());
+  state.counters["top_creep_m"] = creep / static_cast<double>(state.iterations());
 }
 
 enum class Kind { arena, pyramid };

@@ -271,14 +271,6 @@ void WorldState::narrowphase(float dt) {
     const Transform xfB{{static_cast<float>(preciseOrigin(bodyB, 0) - preciseOrigin(bodyA, 0)),
                          static_cast<float>(preciseOrigin(bodyB, 1) - preciseOrigin(bodyA, 1))},
                         bodyB.xf.q};
-    // What the warm start matches by: last step's point ids (the whole manifold copied was a
-    // sixth of this loop in a pyramid) and impulses.
-    const int oldCount = c.manifold.pointCount;
-    std::uint16_t oldIds[2] = {};
-    for (int j = 0; j < oldCount; ++j)
-      oldIds[j] = c.manifold.points[j].id;
-    const float oldNormal[2] = {c.normalImpulse[0], c.normalImpulse[1]};
-    const float oldTangent[2] = {c.tangentImpulse[0], c.tangentImpulse[1]};
     const float margin = def_.continuous
                              ? kSpeculativeDistance + dt * (reachSpeed(ra) + reachSpeed(rb))
                              : kSpeculativeDistance;
@@ -289,6 +281,14 @@ void WorldState::narrowphase(float dt) {
       if (bodyB.island >= 0) wakeBody(bodyB);
       continue;
     }
+    // What the warm start matches by: last step's point ids (the whole manifold copied was a
+    // sixth of this loop in a pyramid) and impulses. (A recycled manifold keeps both.)
+    const int oldCount = c.manifold.pointCount;
+    std::uint16_t oldIds[2] = {};
+    for (int j = 0; j < oldCount; ++j)
+      oldIds[j] = c.manifold.points[j].id;
+    const float oldNormal[2] = {c.normalImpulse[0], c.normalImpulse[1]};
+    const float oldTangent[2] = {c.tangentImpulse[0], c.tangentImpulse[1]};
     // Constructed in place: the manifold function's result goes straight into the contact.
     // Assigned, it was built in a temporary and copied with wide loads of the narrow stores just
     // made (a store-forwarding stall, a sixth of this loop).

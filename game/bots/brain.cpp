@@ -265,8 +265,9 @@ bool isOutOfRounds(const MatchState& s, const Actor& a) {
 }
 
 // The gun it fires at an enemy `distance` m away: of those with rounds left, the one that deals
-// the most a tick there to an actor (expectedDamagePerTick), ties to the lower index; where none
-// reaches, the one reaching farthest. With no rounds at all, the one it holds (it fires nothing).
+// the most a tick there to an actor (expectedDamagePerTick); of equals (none reaching, say), the
+// one reaching farthest, then the lower index. With no rounds at all, the one it holds (it fires
+// nothing).
 std::uint8_t chooseGun(const MatchState& s, const Actor& a, float distance) {
   std::uint8_t best = a.input.weapon;
   float bestDamage = -1.0f, bestRange = 0.0f;

@@ -49,6 +49,13 @@ std::string stepText(int step) {
   return step < 0 ? std::string("never") : std::to_string(step);
 }
 
+// A copy's two table cells: "step | drift".
+std::string drawText(const Draw& d) {
+  char drift[32];
+  std::snprintf(drift, sizeof drift, "%.4f", d.drift);
+  return stepText(d.asleep) + " | " + drift;
+}
+
 // Min, median (the lower middle for an even count) and max; "never" sorts last.
 struct Summary {
   int minStep, medianStep, maxStep;
@@ -109,10 +116,8 @@ int main(int argc, char** argv) {
       b.center.x += shift;
     ours.push_back(run<world_scenes::Ours>(scene, steps));
     if (!oursOnly) theirs.push_back(run<world_scenes::Box2D>(scene, steps));
-    std::printf("| %.2f | %s | %.4f | %s | %s |\n", static_cast<double>(shift),
-                stepText(ours.back().asleep).c_str(), ours.back().drift,
-                oursOnly ? "" : stepText(theirs.back().asleep).c_str(),
-                oursOnly ? "" : std::to_string(theirs.back().drift).substr(0, 6).c_str());
+    std::printf("| %.2f | %s | %s |\n", static_cast<double>(shift), drawText(ours.back()).c_str(),
+                oursOnly ? " | " : drawText(theirs.back()).c_str());
     std::fflush(stdout);
   }
   auto line = [](const char* who, const std::vector<Draw>& draws) {

@@ -376,6 +376,13 @@ int runUntil(Match& m, std::size_t bot, Behaviour wanted, int limit,
   return t;
 }
 
+// Bot 1, turned to face west (where these tests put the player), until it sees the player and
+// attacks (at most 10 ticks).
+void faceThePlayer(Match& m) {
+  m.state().actors[1].aim = rc::kPi;
+  runUntil(m, 1, Behaviour::attack, 10);
+}
+
 // patrol -> investigate on a shot heard through a wall; investigate -> attack once, walking
 // round the wall by its path, it sees the shooter; the walk is a path around the wall, not into
 // it (the bot never stalls against it).
@@ -408,8 +415,7 @@ TEST(Behaviour, PatrolInvestigateAttack) {
 TEST(Behaviour, AttackChaseThenFadeToPatrol) {
   Match m(room({-8, 0}, {{4, 0}}, {{{-2, 8}, {10, 0.5f}}}), config(1));
   MatchState& s = m.state();
-  s.actors[1].aim = rc::kPi;
-  runUntil(m, 1, Behaviour::attack, 10);
+  faceThePlayer(m);
   ASSERT_EQ(s.minds[1].behaviour, Behaviour::attack);
   // The player vanishes behind the wall (to y = 15, north of the wall at y = 8), silently.
   s.world->setTransform(s.actors[0].body, {-8, 15}, 0);
@@ -442,8 +448,7 @@ TEST(Behaviour, HurtTakesCoverOrFlees) {
   {
     Match m(room({-10, 0}, {{0, 0}}, {{{2, -4}, {0.5f, 2}}}), config(1));
     MatchState& s = m.state();
-    s.actors[1].aim = rc::kPi;
-    runUntil(m, 1, Behaviour::attack, 10);
+    faceThePlayer(m);
     ASSERT_EQ(s.minds[1].behaviour, Behaviour::attack);
     s.actors[1].health = 40;
     m.tick(kStill);
@@ -465,8 +470,7 @@ TEST(Behaviour, HurtTakesCoverOrFlees) {
   {
     Match m(room({-10, 0}, {{0, 0}}), config(1));
     MatchState& s = m.state();
-    s.actors[1].aim = rc::kPi;
-    runUntil(m, 1, Behaviour::attack, 10);
+    faceThePlayer(m);
     s.actors[1].health = 40;
     m.tick(kStill);
     ASSERT_EQ(s.minds[1].behaviour, Behaviour::flee);
@@ -536,8 +540,7 @@ TEST(Behaviour, FetchesBeforeChasingAndWhenOutOfRounds) {
   {
     Match m(level, config(1));
     MatchState& s = m.state();
-    s.actors[1].aim = rc::kPi;
-    runUntil(m, 1, Behaviour::attack, 10);
+    faceThePlayer(m);
     ASSERT_EQ(s.minds[1].behaviour, Behaviour::attack);
     s.actors[1].ammo[0] = 0;
     s.actors[1].ammo[1] = 0;
@@ -551,8 +554,7 @@ TEST(Behaviour, FetchesBeforeChasingAndWhenOutOfRounds) {
   {
     Match m(level, config(1));
     MatchState& s = m.state();
-    s.actors[1].aim = rc::kPi;
-    runUntil(m, 1, Behaviour::attack, 10);
+    faceThePlayer(m);
     // The player steps behind the wall's line of sight: the bot would chase; hurt, it fetches.
     s.world->setTransform(s.actors[0].body, {2, -12}, 0.0f);
     s.actors[1].health = 60;  // above kHurtFraction: it chases
@@ -581,8 +583,7 @@ TEST(Behaviour, FightsWithTheGunThatDealsTheMost) {
   {
     Match m(room({-10, 0}, {{0, 0}}), config(1));
     MatchState& s = m.state();
-    s.actors[1].aim = rc::kPi;
-    runUntil(m, 1, Behaviour::attack, 10);
+    faceThePlayer(m);
     ASSERT_EQ(s.minds[1].behaviour, Behaviour::attack);
     EXPECT_EQ(inRange(s, m, {-8, 0}), 0);
     EXPECT_EQ(inRange(s, m, {-4, 0}), 0);
@@ -602,8 +603,7 @@ TEST(Behaviour, FightsWithTheGunThatDealsTheMost) {
   c.weapons = fast;
   Match m(room({-15, 0}, {{0, 0}}), c);
   MatchState& s = m.state();
-  s.actors[1].aim = rc::kPi;
-  runUntil(m, 1, Behaviour::attack, 10);
+  faceThePlayer(m);
   ASSERT_EQ(s.minds[1].behaviour, Behaviour::attack);
   const float radius = s.tuning.radius;
   EXPECT_GT(game::expectedDamagePerTick(fast.weapons[0], 15, radius),

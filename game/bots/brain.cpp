@@ -464,7 +464,8 @@ PlayerInput decide(MatchState& s, std::size_t i) {
       if (mind.behaviour == Behaviour::chase && mind.goalTick < 0 && throwsAt(s, i, at, target)) {
         // Thrown: step back the other way while it flies.
         buttons = kButtonThrow;
-        mind.goal = at - (kThrowNear / rc::length(target - at)) * (target - at);
+        // (Not into a hurt zone: it would wait there for the blast.)
+        mind.goal = clearOfHurt(s.nav, at - (kThrowNear / rc::length(target - at)) * (target - at));
         mind.goalTick = s.tick;
         mind.route.planned = -1;
       }

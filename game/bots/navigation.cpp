@@ -473,12 +473,14 @@ std::int32_t pathCost(const NavGrid& grid, const std::vector<int>& cells) {
   return cost;
 }
 
-int nearestPassable(const NavGrid& grid, rc::Vec2 p, int region, int reach) {
+namespace {
+
+// The cell nearest the point (by its centre; ties to the lower index) that `fits`, within
+// `reach` cells of the cell under it; -1 if there is none.
+template <class Fits>
+int nearestWhere(const NavGrid& grid, rc::Vec2 p, int reach, Fits fits) {
   const int under = grid.cellAt(p);
   if (under < 0) return -1;
-  auto fits = [&](int c) {
-    return grid.passable(c) && (region < 0 || grid.region[static_cast<std::size_t>(c)] == region);
-  };
   if (fits(under)) return under;  // the nearest centre of all
   int best = -1;
   float bestDistance = 0.0f;
@@ -495,6 +497,22 @@ int nearestPassable(const NavGrid& grid, rc::Vec2 p, int region, int reach) {
     }
   }
   return best;
+}
+
+}  // namespace
+
+int nearestPassable(const NavGrid& grid, rc::Vec2 p, int region, int reach) {
+  return nearestWhere(grid, p, reach, [&](int c) {
+    return grid.passable(c) && (region < 0 || grid.region[static_cast<std::size_t>(c)] == region);
+  });
+}
+
+rc::Vec2 clearOfHurt(const NavGrid& grid, rc::Vec2 p, int reach) {
+  const int under = grid.cellAt(p);
+  if (under < 0 || !grid.costly(under)) return p;
+  const int c =
+      nearestWhere(grid, p, reach, [&](int k) { return grid.passable(k) && !grid.costly(k); });
+  return c < 0 ? p : grid.center(c);
 }
 
 void reachableCells(const NavGrid& grid, int start, int steps, PathSearch& search,

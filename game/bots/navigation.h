@@ -160,6 +160,11 @@ std::int32_t pathCost(const NavGrid& grid, const std::vector<int>& cells);
 // cells of the cell under it, in `region` unless that is -1; -1 if there is none.
 int nearestPassable(const NavGrid& grid, rc::Vec2 p, int region = -1, int reach = 8);
 
+// The point itself if its cell is not costly (or the grid is empty), else the centre of the
+// nearest passable cell that is not, within `reach` cells (the point itself if there is none):
+// where to stand to look into a hurt zone rather than in it.
+rc::Vec2 clearOfHurt(const NavGrid& grid, rc::Vec2 p, int reach = 8);
+
 // The passable cells reachable from `start` in at most `steps` straight steps, in the order a
 // breadth-first search meets them (neighbours east, west, north, south).
 void reachableCells(const NavGrid& grid, int start, int steps, PathSearch& search,

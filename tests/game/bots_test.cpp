@@ -757,6 +757,55 @@ TEST(Navigation, AStarAgainstDijkstraOnRandomGrids) {
   EXPECT_GT(none, 20);
 }
 
+// Where a bot stands to look into a hurt zone (clearOfHurt), against a search of every cell on 60
+// random grids with up to 95% of their cells costly, reaches of 1 to 3 cells: a point on a plain
+// cell stays where it is; one on a costly cell goes to the centre of the nearest passable plain
+// cell within reach, or, with none, stays.
+TEST(Navigation, ClearOfHurtIsTheNearestPlainCell) {
+  rc::Random rng(23);
+  int moved = 0, stayed = 0, nowhere = 0;
+  for (int round = 0; round < 60; ++round) {
+    const int w = 1 + static_cast<int>(rng.below(30)), h = 1 + static_cast<int>(rng.below(30));
+    const float density = rng.uniform(0.0f, 0.3f), hurt = rng.uniform(0.0f, 0.95f);
+    const int reach = 1 + round % 3;
+    std::vector<std::uint8_t> flags(static_cast<std::size_t>(w * h));
+    for (std::uint8_t& f : flags)
+      f = rng.uniform() < density ? NavGrid::kBlocked : rng.uniform() < hurt ? NavGrid::kCostly : 0;
+    const NavGrid g = game::makeNavGrid(w, h, 0.5f, {1, -2}, flags);
+    for (int q = 0; q < 20; ++q) {
+      const rc::Vec2 p{rng.uniform(0.5f, 1.5f + 0.5f * static_cast<float>(w)),
+                       rng.uniform(-2.5f, -1.5f + 0.5f * static_cast<float>(h))};
+      const int under = g.cellAt(p);
+      const rc::Vec2 got = game::clearOfHurt(g, p, reach);
+      if (!g.costly(under)) {
+        ASSERT_EQ(got, p);
+        ++stayed;
+        continue;
+      }
+      float best = std::numeric_limits<float>::max();
+      for (int c = 0; c < g.size(); ++c) {
+        if (!g.passable(c) || g.costly(c) || std::abs(g.x(c) - g.x(under)) > reach ||
+            std::abs(g.y(c) - g.y(under)) > reach)
+          continue;
+        best = std::min(best, rc::distanceSquared(g.center(c), p));
+      }
+      if (best == std::numeric_limits<float>::max()) {
+        ASSERT_EQ(got, p);
+        ++nowhere;
+        continue;
+      }
+      const int at = g.cellAt(got);
+      ASSERT_EQ(got, g.center(at));
+      ASSERT_TRUE(g.passable(at) && !g.costly(at));
+      ASSERT_EQ(rc::distanceSquared(got, p), best) << "round " << round;
+      ++moved;
+    }
+  }
+  EXPECT_GT(moved, 200);
+  EXPECT_GT(stayed, 200);
+  EXPECT_GT(nowhere, 3);
+}
+
 // A level's grid: cells whose centre is nearer a wall than the actor's radius plus the margin are
 // blocked, those farther are free, and roomy from kNavSpan cells farther; a kill trigger's cells
 // (and a margin round it) are hazards. A smoothed path round the trigger keeps to roomy cells.

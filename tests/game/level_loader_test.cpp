@@ -109,11 +109,13 @@ TEST(LevelLoader, CorridorsAsCountedByHand) {
   EXPECT_EQ(level.objects[6].kind, LevelObjectKind::prop);
   EXPECT_NEAR(level.objects[6].angle, -15.0f * 3.14159265f / 180.0f, 1e-6f);
 
-  EXPECT_EQ(spawnsOf(level, game::SpawnKind::player), 1);
+  EXPECT_EQ(spawnsOf(level, game::SpawnKind::player), 3);
   EXPECT_EQ(spawnsOf(level, game::SpawnKind::bot), 3);
   expectNear(level.spawns[0].position, {2.5f, -3.0f});
-  EXPECT_EQ(level.spawns[1].team, 1);
-  EXPECT_NEAR(level.spawns[1].facing, -3.14159265f, 1e-6f);  // 180 degrees either way
+  EXPECT_EQ(level.spawns[0].team, 0);
+  EXPECT_EQ(level.spawns[3].kind, game::SpawnKind::bot);
+  EXPECT_EQ(level.spawns[3].team, 1);
+  EXPECT_NEAR(level.spawns[3].facing, -3.14159265f, 1e-6f);  // 180 degrees either way
   ASSERT_EQ(level.pickups.size(), 2u);
   EXPECT_EQ(level.pickups[0].item, "health");
   EXPECT_FLOAT_EQ(level.pickups[0].amount, 25.0f);
@@ -187,7 +189,7 @@ TEST(LevelLoader, ArenaAsCountedByHand) {
   ASSERT_EQ(level.triggers.size(), 1u);
   EXPECT_EQ(level.triggers[0].action, "hurt");
 
-  EXPECT_EQ(spawnsOf(level, game::SpawnKind::player), 1);
+  EXPECT_EQ(spawnsOf(level, game::SpawnKind::player), 4);
   EXPECT_EQ(spawnsOf(level, game::SpawnKind::bot), 8);
   EXPECT_EQ(level.pickups.size(), 4u);
   EXPECT_TRUE(level.paths.empty());
@@ -204,7 +206,7 @@ TEST(LevelLoader, MazeIsTwoLoops) {
   EXPECT_EQ(level.objects[0].shapes.size(), static_cast<std::size_t>(loops[0] + loops[1]));
   EXPECT_GT(loops[1], 100);
   EXPECT_EQ(level.objects[1].kind, LevelObjectKind::trigger);
-  EXPECT_EQ(spawnsOf(level, game::SpawnKind::player), 1);
+  EXPECT_EQ(spawnsOf(level, game::SpawnKind::player), 3);
   EXPECT_EQ(spawnsOf(level, game::SpawnKind::bot), 4);
   EXPECT_EQ(level.pickups.size(), 3u);
 }

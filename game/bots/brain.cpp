@@ -125,6 +125,14 @@ float turnToward(float aim, float wanted) {
   return aim + std::fmax(-kTurnPerTick, std::fmin(kTurnPerTick, delta));
 }
 
+// Whether a step of `move` from `at` leaves plain ground for a hurt zone's margin (a costly cell
+// kHazardProbe ahead, from one that is not).
+bool intoHurt(const MatchState& s, rc::Vec2 at, rc::Vec2 move) {
+  if (move == rc::Vec2{}) return false;
+  const int here = s.nav.cellAt(at), ahead = s.nav.cellAt(at + kHazardProbe * move);
+  return here >= 0 && ahead >= 0 && s.nav.costly(ahead) && !s.nav.costly(here);
+}
+
 // Plans the bot's route to `target` from `at` now: grid cells from the nearest passable one to
 // the one nearest the target (down a distance field for a patrol point, else by A*), smoothed.
 // An empty route (no grid, no path) means walking straight at the target.
@@ -182,10 +190,15 @@ rc::Vec2 steer(MatchState& s, std::size_t i, rc::Vec2 at, rc::Vec2 target) {
   };
   rc::Vec2 dir = way();
   // About to enter a hazard's margin (pushed off its route, or sidestepping): plan again from
-  // here, once a tick; the route starts on the nearest cell that is no hazard.
+  // here, once a tick; the route starts on the nearest cell that is no hazard. About to leave
+  // plain ground for a hurt zone's margin on a route planned a while ago (pushed off it: the
+  // straight walk to its next waypoint may now cross the zone): plan again too, at most every
+  // kReplanTicks (a new route may cross it on purpose, where going round costs more).
   const int probe = s.nav.cellAt(at + kHazardProbe * dir);
-  if (probe >= 0 && (s.nav.flags[static_cast<std::size_t>(probe)] & NavGrid::kHazard) != 0 &&
-      route.planned != s.tick) {
+  const bool hazard =
+      probe >= 0 && (s.nav.flags[static_cast<std::size_t>(probe)] & NavGrid::kHazard) != 0;
+  const bool hurt = s.tick - route.planned >= kReplanTicks && intoHurt(s, at, dir);
+  if ((hazard || hurt) && route.planned != s.tick) {
     plan(s, i, at, target);
     dir = way();
   }
@@ -470,8 +483,11 @@ PlayerInput decide(MatchState& s, std::size_t i) {
         mind.route.planned = -1;
       }
       const bool steppingBack = mind.goalTick >= 0 && s.tick - mind.goalTick < 2 * kTicksPerSecond;
-      move = steer(s, i, at, steppingBack ? mind.goal : target);
-      if (rc::distanceSquared(at, target) < kArrive * kArrive ||
+      // Where the enemy was, or, if that is in a hurt zone, the nearest ground clear of it: the
+      // bot looks in from there.
+      const rc::Vec2 there = clearOfHurt(s.nav, target);
+      move = steer(s, i, at, steppingBack ? mind.goal : there);
+      if (rc::distanceSquared(at, there) < kArrive * kArrive ||
           (move == rc::Vec2{} && !steppingBack))
         aim = a.aim + kScanPerTick;  // there, and nothing: look around
       else
@@ -487,6 +503,13 @@ PlayerInput decide(MatchState& s, std::size_t i) {
       move = mind.strafe * rc::Vec2{-toward.y, toward.x};
       if (distance > kFar) move = toward;
       if (distance < kNear) move = -toward;
+      // These steps ignore the grid: none from plain ground into a hurt zone's margin (a
+      // sidestep turns the other way, else the bot stands).
+      if (intoHurt(s, at, move)) {
+        const bool strafing = distance <= kFar && distance >= kNear;
+        if (strafing) mind.strafe = -mind.strafe;
+        move = strafing && !intoHurt(s, at, -move) ? -move : rc::Vec2{};
+      }
       const float error = kAimError + kAimErrorPerSpeed * rc::length(threat->velocity);
       const float exact = angleOf(d);
       aim = turnToward(a.aim, exact + s.rng.uniform(-error, error));

@@ -170,15 +170,28 @@ using M4 = std::int32_t __attribute__((vector_size(16)));
     std::memcpy(&xf, radians + i, sizeof xf);
     const D4 x = __builtin_convertvector(xf, D4);
     const D4 ax = __builtin_bit_cast(D4, __builtin_bit_cast(I4, x) & ~kSign);
+    D4 sSmall, cSmall;
+    smallSine(x, sSmall);
+    smallCosine(x, cSmall);
+    const auto store = [&](F4 sine, F4 cosine) {
+      const F4 low = __builtin_shufflevector(sine, cosine, 0, 4, 1, 5);
+      const F4 high = __builtin_shufflevector(sine, cosine, 2, 6, 3, 7);
+      std::memcpy(static_cast<void*>(out + i), &low, sizeof low);
+      std::memcpy(static_cast<void*>(out + i + 2), &high, sizeof high);
+    };
+    // Every angle small (a substep's turns, nearly always): the short series alone, the
+    // reduced path's work skipped (it is what each lane would take anyway).
+    const I4 smallLanes = ax < 0.0625;  // false for NaN too
+    if (smallLanes[0] & smallLanes[1] & smallLanes[2] & smallLanes[3]) {
+      store(__builtin_convertvector(sSmall, F4), __builtin_convertvector(cSmall, F4));
+      continue;
+    }
     const I4 ordinary = ax <= 0x1p24;  // false for NaN and infinities too
     if (!(ordinary[0] & ordinary[1] & ordinary[2] & ordinary[3])) {
       for (std::size_t j = i; j < i + 4; ++j)
         out[j] = sincosInline(radians[j]);
       continue;
     }
-    D4 sSmall, cSmall;
-    smallSine(x, sSmall);
-    smallCosine(x, cSmall);
     // The reduction: k = roundToInteger(x 2/pi), the magic sum's low bits are |k|.
     const D4 v = x * kTwoOverPi;
     const I4 vSign = __builtin_bit_cast(I4, v) & kSign;
@@ -209,10 +222,7 @@ using M4 = std::int32_t __attribute__((vector_size(16)));
         F4, (small & bits(__builtin_convertvector(sSmall, F4))) | (~small & sineFull));
     const F4 cosine = __builtin_bit_cast(
         F4, (small & bits(__builtin_convertvector(cSmall, F4))) | (~small & cosineFull));
-    const F4 low = __builtin_shufflevector(sine, cosine, 0, 4, 1, 5);
-    const F4 high = __builtin_shufflevector(sine, cosine, 2, 6, 3, 7);
-    std::memcpy(static_cast<void*>(out + i), &low, sizeof low);
-    std::memcpy(static_cast<void*>(out + i + 2), &high, sizeof high);
+    store(sine, cosine);
   }
   return i;
 }

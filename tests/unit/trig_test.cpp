@@ -55,7 +55,9 @@ TEST(Trig, SmallAnglesRoundCorrectly) {
 // The batch (four at a time in AVX2 where the processor has it) gives, bit for bit, what the
 // one-angle sincos gives: angles of every size, both sides of the short series' boundary and of
 // the quadrant boundaries, the special values, in spans of every length mod 4 (the groups and
-// the tail), and a group holding one angle beyond 2^24 or not finite (which goes one by one).
+// the tail), a group holding one angle beyond 2^24 or not finite (which goes one by one), and
+// runs of small angles (a substep's turns), whose groups take the short series alone when every
+// angle in them is below 1/16.
 TEST(Trig, BatchMatchesOneAtATime) {
   rc::Random rng(7);
   const float inf = std::numeric_limits<float>::infinity();
@@ -93,6 +95,8 @@ TEST(Trig, BatchMatchesOneAtATime) {
         angles.push_back(std::exp2(rng.uniform(-60.0f, 30.0f)) * (i % 8 < 4 ? 1 : -1));
     }
   }
+  for (int i = 0; i < 100000; ++i)
+    angles.push_back(i % 1000 < 500 ? rng.uniform(-0.0625f, 0.0625f) : rng.uniform(-0.07f, 0.07f));
   int different = 0;
   for (std::size_t length :
        {angles.size(), angles.size() - 1, angles.size() - 2, angles.size() - 3}) {

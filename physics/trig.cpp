@@ -213,7 +213,7 @@ using M4 = std::int32_t __attribute__((vector_size(16)));
     const M4 q = __builtin_convertvector(quadrant, M4);
     const M4 odd = (q & 1) != 0;
     const M4 negateSine = q >= 2, negateCosine = (q == 1) | (q == 2);
-    const M4 small = __builtin_convertvector(ax < 0.0625, M4);
+    const M4 small = __builtin_convertvector(smallLanes, M4);
     const auto bits = [](F4 f) { return __builtin_bit_cast(M4, f); };
     constexpr std::int32_t kFloatSign = std::numeric_limits<std::int32_t>::min();
     const M4 sineFull = ((odd & bits(c)) | (~odd & bits(s))) ^ (negateSine & kFloatSign);

@@ -23,6 +23,7 @@
 #include "game/match/match.h"
 #include "game/rules/triggers.h"
 #include "game/weapons/hitscan.h"
+#include "level_test_support.h"
 #include "match_test_support.h"
 #include "physics/random.h"
 #include "physics/trig.h"
@@ -697,6 +698,15 @@ std::int32_t dijkstra(const NavGrid& g, int start, int goal) {
   return -1;
 }
 
+// Random cell flags for a grid: blocked with probability `blocked`, else costly with probability
+// `costly`.
+std::vector<std::uint8_t> randomFlags(rc::Random& rng, int cells, float blocked, float costly) {
+  std::vector<std::uint8_t> flags(static_cast<std::size_t>(cells));
+  for (std::uint8_t& f : flags)
+    f = rng.uniform() < blocked ? NavGrid::kBlocked : rng.uniform() < costly ? NavGrid::kCostly : 0;
+  return flags;
+}
+
 // A* finds a path exactly when Dijkstra does, of the same cost, on 150 random grids (1 x 1 to
 // 40 x 40, 0 to 45% blocked, every other grid with 0 to 30% of its cells costly); every path is
 // legal (passable cells, one step apart, no corner cut, from start to goal), and the same query
@@ -711,10 +721,7 @@ TEST(Navigation, AStarAgainstDijkstraOnRandomGrids) {
     const int w = 1 + static_cast<int>(rng.below(40)), h = 1 + static_cast<int>(rng.below(40));
     const float density = rng.uniform(0.0f, 0.45f);
     const float hurt = round % 2 == 1 ? rng.uniform(0.0f, 0.3f) : 0.0f;
-    std::vector<std::uint8_t> flags(static_cast<std::size_t>(w * h));
-    for (std::uint8_t& f : flags)
-      f = rng.uniform() < density ? NavGrid::kBlocked : rng.uniform() < hurt ? NavGrid::kCostly : 0;
-    const NavGrid g = game::makeNavGrid(w, h, 0.5f, {}, flags);
+    const NavGrid g = game::makeNavGrid(w, h, 0.5f, {}, randomFlags(rng, w * h, density, hurt));
     if (g.open.empty()) continue;
     for (int q = 0; q < 8; ++q) {
       const int a = g.open[rng.below(static_cast<std::uint32_t>(g.open.size()))];
@@ -768,10 +775,8 @@ TEST(Navigation, ClearOfHurtIsTheNearestPlainCell) {
     const int w = 1 + static_cast<int>(rng.below(30)), h = 1 + static_cast<int>(rng.below(30));
     const float density = rng.uniform(0.0f, 0.3f), hurt = rng.uniform(0.0f, 0.95f);
     const int reach = 1 + round % 3;
-    std::vector<std::uint8_t> flags(static_cast<std::size_t>(w * h));
-    for (std::uint8_t& f : flags)
-      f = rng.uniform() < density ? NavGrid::kBlocked : rng.uniform() < hurt ? NavGrid::kCostly : 0;
-    const NavGrid g = game::makeNavGrid(w, h, 0.5f, {1, -2}, flags);
+    const NavGrid g =
+        game::makeNavGrid(w, h, 0.5f, {1, -2}, randomFlags(rng, w * h, density, hurt));
     for (int q = 0; q < 20; ++q) {
       const rc::Vec2 p{rng.uniform(0.5f, 1.5f + 0.5f * static_cast<float>(w)),
                        rng.uniform(-2.5f, -1.5f + 0.5f * static_cast<float>(h))};
@@ -932,8 +937,7 @@ TEST(Navigation, HurtZonesCostMoreAndAreWalkedRound) {
 // grid and their stale routes out of it (strafing, a chase's end, a walk pushed off its route),
 // 205 before a grenade's step back did.
 TEST(Navigation, BotsKeepOutOfTheArenasHurtZone) {
-  const game::Level arena =
-      game::loadLevel(std::string(RICOCHET_SOURCE_DIR) + "/assets/levels/arena.tmj");
+  const game::Level arena = game::loadLevel(level_test::levelPath("arena.tmj"));
   std::int64_t inside = 0;
   for (std::uint64_t seed = 1; seed <= 6; ++seed) {
     MatchConfig c = config(16);
@@ -958,7 +962,7 @@ TEST(Navigation, BotsKeepOutOfTheArenasHurtZone) {
 // The bundled maze: a bot sent from its spawn to the player's walks its path there, within 30%
 // over the path's length at full speed, never stuck for long.
 TEST(Navigation, BotCrossesTheMaze) {
-  game::Level maze = game::loadLevel(std::string(RICOCHET_SOURCE_DIR) + "/assets/levels/maze.tmj");
+  game::Level maze = game::loadLevel(level_test::levelPath("maze.tmj"));
   Vec2 goal{};
   for (const game::LevelSpawn& spawn : maze.spawns)
     if (spawn.kind == game::SpawnKind::player) goal = spawn.position;
@@ -994,8 +998,7 @@ TEST(Navigation, BotCrossesTheMaze) {
 // finds a point the ray between them meets a static body; and it answers most blocked pairs.
 TEST(Navigation, TileInsidesAndTheSightShortcut) {
   for (const char* name : {"maze", "corridors"}) {
-    game::Level level =
-        game::loadLevel(std::string(RICOCHET_SOURCE_DIR) + "/assets/levels/" + name + ".tmj");
+    game::Level level = game::loadLevel(level_test::levelPath(std::string(name) + ".tmj"));
     MatchConfig c = config(0);
     c.players = 0;
     Match m(std::move(level), c);

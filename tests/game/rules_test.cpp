@@ -18,6 +18,7 @@
 #include "game/rules/impacts.h"
 #include "game/rules/pickups.h"
 #include "game/weapons/weapons.h"
+#include "level_test_support.h"
 #include "match_test_support.h"
 
 // Named, not anonymous: the test files compile in unity batches, and their helpers' names repeat.
@@ -513,8 +514,7 @@ TEST(Bounce, CratesByTheirRestitution) {
       EXPECT_NEAR(apex, e * e * h, std::max(0.03f * e * e * h, e * v / 240.0f)) << e << " " << h;
     }
   }
-  Match arena(game::loadLevel(std::string(RICOCHET_SOURCE_DIR) + "/assets/levels/arena.tmj"),
-              config(0));
+  Match arena(game::loadLevel(level_test::levelPath("arena.tmj")), config(0));
   const game::MatchState& s = arena.state();
   int bouncy = 0;
   for (std::size_t i = 0; i < s.level.objects.size(); ++i) {

@@ -13,7 +13,7 @@
 
 #include "game/scene.h"
 
-namespace {
+namespace scene_test {
 
 std::string errorOf(const std::string& text) {
   try {
@@ -253,9 +253,9 @@ TEST(Scene, OutputsAreWrittenWhole) {
   std::filesystem::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace scene_test
 
-namespace {
+namespace scene_test {
 
 // Hostile scene files (issue 24): each gets one line naming the file and what is wrong, in
 // bounded time and memory, never a crash.
@@ -404,4 +404,4 @@ TEST(Scene, BoundsAreFittedToAScenePastTheDefaultSquare) {
   EXPECT_EQ(given.world.bounds, (rc::AABB{{-10, -10}, {10, 10}}));
 }
 
-}  // namespace
+}  // namespace scene_test

@@ -195,7 +195,7 @@ void WorldState::releaseSlot(Body& b) {
 }
 
 void WorldState::swapSlots(std::int32_t a, std::int32_t b) {
-  ++awakeEpoch_;  // every change of the awake set swaps slots (contactAsleep_)
+  ++awakeEpoch_;  // every change of the awake set swaps slots (awakeContacts_)
   if (a == b) return;
   const auto ia = 3 * static_cast<std::size_t>(a), ib = 3 * static_cast<std::size_t>(b);
   for (std::size_t k = 0; k < 3; ++k) {

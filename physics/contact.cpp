@@ -57,6 +57,7 @@ void WorldState::updatePairs() {
     c.friction = mixFriction(ra.friction, rb.friction);
     c.restitution = mixRestitution(ra.restitution, rb.restitution);
     contactIndex_[key] = static_cast<std::int32_t>(contacts_.size());
+    if (!contactListStale_) awakeContacts_.push_back(static_cast<std::int32_t>(contacts_.size()));
     contacts_.push_back(c);
   }
 }
@@ -66,6 +67,20 @@ void WorldState::destroyContact(std::size_t index, bool destroyed) {
   if (c.touching && wantsContactEvents(c))
     contactSink().end.push_back({ref(c.shapeA), ref(c.shapeB), destroyed});
   contactIndex_.erase(pairKey(contacts_[index].shapeA, contacts_[index].shapeB));
+  // The last contact moves into `index`. Both listed (or `index` the last): i's entry now
+  // names the one moved in and the last entry goes (a loop walking the list back to front has
+  // walked both). The last one unlisted: i's entry, if any, names a contact with nothing awake,
+  // which the loops pass over. Only the last one listed and `index` not needs an entry moved
+  // into the middle: the list is made again instead (a shape of a sleeping body destroyed).
+  if (!contactListStale_ && !awakeContacts_.empty() &&
+      awakeContacts_.back() == static_cast<std::int32_t>(contacts_.size() - 1)) {
+    const auto i = static_cast<std::int32_t>(index);
+    if (i == awakeContacts_.back() ||
+        std::binary_search(awakeContacts_.begin(), awakeContacts_.end(), i))
+      awakeContacts_.pop_back();
+    else
+      contactListStale_ = true;
+  }
   if (index + 1 != contacts_.size()) {
     contacts_[index] = contacts_.back();
     contactIndex_[pairKey(contacts_[index].shapeA, contacts_[index].shapeB)] =
@@ -78,23 +93,28 @@ void WorldState::destroyContact(std::size_t index, bool destroyed) {
   if (contactAsleep_.size() > contacts_.size()) contactAsleep_.resize(contacts_.size());
 }
 
-// Marks the contacts with nothing awake on either side, when the awake set changed since they
-// were last marked; otherwise only the contacts made since are added, unmarked.
-void WorldState::markSleepingContacts() {
-  if (contactSleepEpoch_ == awakeEpoch_) {
-    contactAsleep_.resize(contacts_.size(), 0);
-    return;
+const std::vector<std::int32_t>& WorldState::awakeContactList() {
+  if (!contactMarksHold()) {
+    contactAsleep_.resize(contacts_.size());
+    for (std::size_t i = 0; i < contacts_.size(); ++i) {
+      const Contact& c = contacts_[i];
+      const Body& a =
+          bodies_[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(c.shapeA)].body)];
+      const Body& b =
+          bodies_[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(c.shapeB)].body)];
+      contactAsleep_[i] = !awake(a) && !awake(b) ? 1 : 0;
+    }
+    contactSleepEpoch_ = awakeEpoch_;
+    contactListStale_ = true;
   }
-  contactAsleep_.resize(contacts_.size());
-  for (std::size_t i = 0; i < contacts_.size(); ++i) {
-    const Contact& c = contacts_[i];
-    const Body& a =
-        bodies_[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(c.shapeA)].body)];
-    const Body& b =
-        bodies_[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(c.shapeB)].body)];
-    contactAsleep_[i] = !awake(a) && !awake(b) ? 1 : 0;
+  if (contactListStale_) {
+    awakeContacts_.clear();
+    for (std::size_t i = 0; i < contacts_.size(); ++i)
+      if (i >= contactAsleep_.size() || contactAsleep_[i] == 0)
+        awakeContacts_.push_back(static_cast<std::int32_t>(i));
+    contactListStale_ = false;
   }
-  contactSleepEpoch_ = awakeEpoch_;
+  return awakeContacts_;
 }
 
 // The solver keeps a speculative point's gap from closing along the normal the manifold had at
@@ -238,7 +258,7 @@ void WorldState::narrowphase(float dt) {
   // would skip each one).
   profile_.recycled = profile_.made = 0;
   if (awakeCount_ == 0) return;
-  markSleepingContacts();
+  awakeContactList();
   // How far a shape's surface can move towards anything this step: its body's speed plus its
   // turning speed times its reach from the centre of mass.
   auto reachSpeed = [&](const ShapeRecord& r) {
@@ -248,9 +268,18 @@ void WorldState::narrowphase(float dt) {
     const float reach = length(r.bound.center - b.localCenter) + r.bound.radius;
     return length(Vec2{v_[i], v_[i + 1]}) + std::fabs(v_[i + 2]) * reach;
   };
-  // Back to front: a destroyed contact is replaced by the last one, already updated.
-  for (std::size_t i = contacts_.size(); i-- > 0;) {
-    if (knownAsleep(i)) continue;
+  // Back to front: a destroyed contact is replaced by the last one, already updated. The listed
+  // contacts while the list holds; once a contact wakes an island, every contact below the one
+  // at hand (the woken island's among them).
+  std::size_t listed = awakeContacts_.size(), i = contacts_.size();
+  for (;;) {
+    if (contactMarksHold()) {
+      if (listed == 0) break;
+      i = static_cast<std::size_t>(awakeContacts_[--listed]);
+    } else {
+      if (i == 0) break;
+      --i;
+    }
     Contact& c = contacts_[i];
     const ShapeRecord& ra = shapes_[static_cast<std::size_t>(c.shapeA)];
     const ShapeRecord& rb = shapes_[static_cast<std::size_t>(c.shapeB)];

@@ -98,9 +98,8 @@ void WorldState::updateSleep(float dt) {
   // hundreds of overlaps, spreads at 3 cm/s), and asleep they would stay inside each other.
   std::vector<float>& still = freeV_;  // reused scratch: the island's shortest still time
   still.assign(n, std::numeric_limits<float>::max());
-  for (std::size_t i = 0; i < contacts_.size(); ++i) {
-    if (knownAsleep(i)) continue;
-    const Contact& c = contacts_[i];
+  for (const std::int32_t index : awakeContactList()) {
+    const Contact& c = contacts_[static_cast<std::size_t>(index)];
     if (!c.touching) continue;
     const Body& a =
         bodies_[static_cast<std::size_t>(shapes_[static_cast<std::size_t>(c.shapeA)].body)];

@@ -100,8 +100,8 @@ void WorldState::prepareContacts() {
   if (awakeCount_ == 0) return;
   // shared: a body with two contacts overlapping past the slop.
   bool shared = false;
-  for (std::size_t ci = 0; ci < contacts_.size(); ++ci) {
-    if (knownAsleep(ci)) continue;
+  for (const std::int32_t index : awakeContactList()) {
+    const auto ci = static_cast<std::size_t>(index);
     const Contact& c = contacts_[ci];
     if (!c.touching) continue;
     const std::int32_t bodyA = shapes_[static_cast<std::size_t>(c.shapeA)].body;

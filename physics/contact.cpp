@@ -74,8 +74,9 @@ void WorldState::destroyContact(std::size_t index, bool destroyed) {
   // into the middle: the list is made again instead (a shape of a sleeping body destroyed).
   if (!contactListStale_ && !awakeContacts_.empty() &&
       awakeContacts_.back() == static_cast<std::int32_t>(contacts_.size() - 1)) {
+    // (A list of every contact, an awake crowd's, needs no search.)
     const auto i = static_cast<std::int32_t>(index);
-    if (i == awakeContacts_.back() ||
+    if (i == awakeContacts_.back() || awakeContacts_.size() == contacts_.size() ||
         std::binary_search(awakeContacts_.begin(), awakeContacts_.end(), i))
       awakeContacts_.pop_back();
     else

@@ -71,7 +71,8 @@ void WorldState::destroyContact(std::size_t index, bool destroyed) {
   // names the one moved in and the last entry goes (a loop walking the list back to front has
   // walked both). The last one unlisted: i's entry, if any, names a contact with nothing awake,
   // which the loops pass over. Only the last one listed and `index` not needs an entry moved
-  // into the middle: the list is made again instead (a shape of a sleeping body destroyed).
+  // into the middle: the list is made again instead (a filter refusing two sleeping bodies that
+  // do not touch: nothing wakes).
   if (!contactListStale_ && !awakeContacts_.empty() &&
       awakeContacts_.back() == static_cast<std::int32_t>(contacts_.size() - 1)) {
     // (A list of every contact, an awake crowd's, needs no search.)

@@ -226,8 +226,8 @@ TEST(Snapshot, ListOfAwakeContactsGivesTheBitsOfANewOne) {
   int asleepSteps = 0, destroyedShots = 0;
   for (int k = 0; k < 600; ++k) {
     if (k % 3 == 0) {
-      // Falling onto a pile, or past one at 0.6-1 m beside it (its AABB overlaps the boxes'
-      // but it never touches them).
+      // Falling onto a pile (waking it), or without gravity past one, 0.5-0.9 m beside it, onto
+      // the ground.
       const float x = -22.0f + 4.0f * static_cast<float>(rng.below(12));
       const bool past = rng.below(2) == 0;
       rc::BodyDef shot = dynamicAt(

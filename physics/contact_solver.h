@@ -128,6 +128,11 @@ class ContactSolver {
   // Point `point` of constraint i after the solve: its impulses, maxNormalImpulse and
   // relativeVelocity.
   SolvedPoint solved(std::size_t i, int point) const;
+  // Every constraint's impulses after the solve, in prepare's order, four floats each: the
+  // normal impulses of its two points, then their tangent impulses (a missing point's are 0).
+  // One pass for all (the warm start's store), where solved() per point was a call and a lane
+  // lookup each.
+  void impulses(std::span<float> out) const;
   // The whole point, derived fields included (restitution needs its lever arms and mass).
   ConstraintPoint point(std::size_t i, int point) const;
 

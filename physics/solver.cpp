@@ -522,12 +522,14 @@ void WorldState::storeVelocities() {
 
 // The impulses back into the contacts, for the next step's warm start.
 void WorldState::storeImpulses() {
+  solvedImpulses_.resize(4 * constraintSources_.size());
+  contactSolver_.impulses(solvedImpulses_);
   for (std::size_t i = 0; i < constraintSources_.size(); ++i) {
     Contact& c = contacts_[static_cast<std::size_t>(constraintSources_[i].contact)];
+    const float* p = &solvedImpulses_[4 * i];
     for (int k = 0; k < c.manifold.pointCount; ++k) {
-      const SolvedPoint p = contactSolver_.solved(i, k);
-      c.normalImpulse[k] = p.normalImpulse;
-      c.tangentImpulse[k] = p.tangentImpulse;
+      c.normalImpulse[k] = p[k];
+      c.tangentImpulse[k] = p[2 + k];
     }
   }
 }

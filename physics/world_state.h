@@ -374,6 +374,7 @@ class WorldState {
   // than semi-implicit Euler, the velocities before the free motion, which restitution reads
   // its approach from (semi-implicit Euler's is freeV_).
   std::vector<float> freeV_;
+  std::vector<float> solvedImpulses_;  // storeImpulses' scratch: four floats a constraint
   std::vector<SolverBody> solverBodies_;
   std::vector<float> approachV_;
   std::vector<double> startCenter_;  // x and y per slot

@@ -743,22 +743,15 @@ SolvedPoint ContactSolver::solved(std::size_t i, int point) const {
 
 void ContactSolver::impulses(std::span<float> out) const {
   const Data& d = *data_;
-  auto copy = [&](const auto& batches, std::size_t lanes) {
-    for (std::size_t i = 0; i < d.constraintLane.size(); ++i) {
-      const auto lane = static_cast<std::size_t>(d.constraintLane[i]);
-      const auto& b = batches[lane / lanes];
-      const std::size_t l = lane % lanes;
-      float* o = &out[4 * i];
+  for (std::size_t i = 0; i < d.constraintLane.size(); ++i) {
+    float* o = &out[4 * i];
+    atLane(d, i, [&](const auto& b, int l) {
       o[0] = b.p[0].normalImpulse[l];
       o[1] = b.points == 2 ? b.p[1].normalImpulse[l] : 0.0f;
       o[2] = b.p[0].tangentImpulse[l];
       o[3] = b.points == 2 ? b.p[1].tangentImpulse[l] : 0.0f;
-    }
-  };
-  if (d.lanes == 8)
-    copy(d.batches8, 8);
-  else
-    copy(d.batches4, 4);
+    });
+  }
 }
 
 void ContactSolver::computeMasses() {

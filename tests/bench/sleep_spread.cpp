@@ -9,9 +9,14 @@
 // Why: a tall pile's last motions are chaotic (a one-bit change anywhere moves when its top boxes
 // stop swinging), so the step one pile falls asleep at is one draw from a wide spread. World
 // bench's "pyramid, sleeping on" rows time one copy (k = 0): a change to the solver or to sleep
-// can move that row by 2x either way by the draw alone. Judge sleep by the median here. Not part
-// of ctest; run
+// can move that row by 2x either way by the draw alone. Judge sleep by the median here.
+//
+// --trace prints our 0 cm copy step by step instead (sleeping off with --no-sleep): how far the
+// top box has sunk, the bodies' mean vertical speed, how many are over the sleep tolerance, and
+// the vertical breathing's period and decay measured from it beside what the model of the solve
+// predicts (tests/bench/README.md, "Why it stays awake"). Not part of ctest; run
 //   ./build/release/tests/sleep_spread [--base B] [--copies K] [--steps N] [--ours-only]
+//   ./build/release/tests/sleep_spread --trace [--base B] [--steps N] [--no-sleep]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -76,12 +81,79 @@ Summary summarize(const std::vector<Draw>& draws) {
           drifts.front(),       drifts[mid],       drifts.back()};
 }
 
+// The 0 cm copy step by step; then the breathing: the steps at which the bodies' mean vertical
+// velocity turns from up to down (a crest of the pile's height each), the period between the
+// first crests and how the top's sinking below its final depth falls from one trough (the
+// deepest sinking between two crests) to the next.
+int trace(int base, int steps, bool sleep) {
+  SceneDesc scene = world_scenes::pyramid(base);
+  scene.sleep = sleep;
+  world_scenes::Ours engine(scene);
+  const std::size_t top = scene.bodies.size() - 1;
+  std::vector<double> sink, meanVy;
+  std::printf(
+      "| step | awake | over 0.05 m/s | fastest (m/s) | mean vy (m/s) | top sunk (m) |\n"
+      "|---:|---:|---:|---:|---:|---:|\n");
+  for (int k = 1; k <= steps; ++k) {
+    engine.step();
+    int over = 0;
+    double fastest = 0, sumVy = 0;
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      const rc::Vec2 v = engine.velocity(i);
+      const double speed = std::hypot(static_cast<double>(v.x), static_cast<double>(v.y));
+      over += speed > 0.05;
+      fastest = std::max(fastest, speed);
+      sumVy += static_cast<double>(v.y);
+    }
+    meanVy.push_back(sumVy / static_cast<double>(scene.bodies.size()));
+    sink.push_back(static_cast<double>(scene.bodies[top].position.y - engine.position(top).y));
+    std::printf("| %d | %d | %d | %.4f | %+.5f | %.4f |\n", k, engine.awakeCount(), over, fastest,
+                meanVy.back(), sink.back());
+  }
+  std::vector<int> crests;  // steps (0-based) where the mean vertical velocity turns downwards
+  for (std::size_t k = 1; k < meanVy.size(); ++k)
+    if (meanVy[k - 1] > 0 && meanVy[k] <= 0) crests.push_back(static_cast<int>(k));
+  // Model (README): a Gauss-Seidel pass cuts the slowest mode of a chain of `base` contacts by
+  // mu = pi^2 / base^2; warm-started substeps turn it by sqrt(mu) and shrink it by sqrt(1 - mu)
+  // each. Four substeps a step, as world_bench runs.
+  const double pi = 3.14159265358979, mu = pi * pi / (base * base);
+  std::printf("\nmodel: period %.1f steps, each trough %.2f of the one before\n",
+              2 * pi / std::sqrt(mu) / 4, std::pow(1 - mu, pi / std::sqrt(mu)));
+  if (crests.size() < 3) {
+    std::printf("measured: fewer than three crests in %d steps\n", steps);
+    return 0;
+  }
+  const std::size_t cycles = std::min<std::size_t>(crests.size() - 1, 5);
+  const double period =
+      static_cast<double>(crests[cycles] - crests[0]) / static_cast<double>(cycles);
+  // Troughs: the deepest sinking before the first crest and between consecutive crests, against
+  // the depth at the last step.
+  std::vector<double> troughs;
+  int from = 0;
+  for (std::size_t c = 0; c <= cycles; ++c) {
+    double deepest = 0;
+    for (int k = from; k < crests[c]; ++k)
+      deepest = std::max(deepest, sink[static_cast<std::size_t>(k)]);
+    troughs.push_back(deepest - sink.back());
+    from = crests[c];
+  }
+  double ratio = 0;
+  for (std::size_t c = 1; c < troughs.size(); ++c)
+    ratio += troughs[c] / troughs[c - 1];
+  ratio /= static_cast<double>(troughs.size() - 1);
+  std::printf("measured: crests at steps");
+  for (std::size_t c = 0; c <= cycles; ++c)
+    std::printf(" %d", crests[c] + 1);
+  std::printf(", period %.1f steps, each trough %.2f of the one before\n", period, ratio);
+  return 0;
+}
+
 }  // namespace sleep_spread
 
 int main(int argc, char** argv) {
   using namespace sleep_spread;
   int base = 40, copies = 16, steps = 1000;
-  bool oursOnly = false;
+  bool oursOnly = false, tracing = false, sleep = true;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--base") == 0 && i + 1 < argc) {
       base = std::atoi(argv[++i]);
@@ -91,9 +163,14 @@ int main(int argc, char** argv) {
       steps = std::atoi(argv[++i]);
     } else if (std::strcmp(argv[i], "--ours-only") == 0) {
       oursOnly = true;
+    } else if (std::strcmp(argv[i], "--trace") == 0) {
+      tracing = true;
+    } else if (std::strcmp(argv[i], "--no-sleep") == 0) {
+      sleep = false;
     } else {
       std::fprintf(stderr,
-                   "usage: sleep_spread [--base B] [--copies K] [--steps N] [--ours-only]\n");
+                   "usage: sleep_spread [--base B] [--copies K] [--steps N] [--ours-only]\n"
+                   "       sleep_spread --trace [--base B] [--steps N] [--no-sleep]\n");
       return 2;
     }
   }
@@ -102,6 +179,7 @@ int main(int argc, char** argv) {
                  "sleep_spread: --base must be 1 to 200, --copies and --steps at least 1\n");
     return 2;
   }
+  if (tracing) return trace(base, steps, sleep);
   std::vector<Draw> ours, theirs;
   std::printf(
       "| shift (m) | ours asleep at step | ours drift (m) | Box2D 2.4.1 asleep at step | "

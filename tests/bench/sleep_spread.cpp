@@ -82,18 +82,24 @@ Summary summarize(const std::vector<Draw>& draws) {
 }
 
 // The 0 cm copy step by step; then the breathing: the steps at which the bodies' mean vertical
-// velocity turns from up to down (a crest of the pile's height each), the period between the
-// first crests and how the top's sinking below its final depth falls from one trough (the
-// deepest sinking between two crests) to the next.
+// velocity turns from up to down while the pile is awake (a crest of its height each), the period
+// between the first crests and how the top's sinking below its depth at the last step (so run
+// until the pile has settled) falls from one trough (the deepest sinking between two crests) to
+// the next. The tolerance and the substeps are the world's defaults, which world_scenes::Ours
+// runs with.
 int trace(int base, int steps, bool sleep) {
   SceneDesc scene = world_scenes::pyramid(base);
   scene.sleep = sleep;
   world_scenes::Ours engine(scene);
+  const rc::WorldDef defaults;
+  const double tolerance = static_cast<double>(defaults.linearSleepTolerance);
   const std::size_t top = scene.bodies.size() - 1;
   std::vector<double> sink, meanVy;
+  std::vector<bool> awake;
   std::printf(
-      "| step | awake | over 0.05 m/s | fastest (m/s) | mean vy (m/s) | top sunk (m) |\n"
-      "|---:|---:|---:|---:|---:|---:|\n");
+      "| step | awake | over %.2f m/s | fastest (m/s) | mean vy (m/s) | top sunk (m) |\n"
+      "|---:|---:|---:|---:|---:|---:|\n",
+      tolerance);
   for (int k = 1; k <= steps; ++k) {
     engine.step();
     int over = 0;
@@ -101,24 +107,25 @@ int trace(int base, int steps, bool sleep) {
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
       const rc::Vec2 v = engine.velocity(i);
       const double speed = std::hypot(static_cast<double>(v.x), static_cast<double>(v.y));
-      over += speed > 0.05;
+      over += speed > tolerance;
       fastest = std::max(fastest, speed);
       sumVy += static_cast<double>(v.y);
     }
     meanVy.push_back(sumVy / static_cast<double>(scene.bodies.size()));
+    awake.push_back(engine.awakeCount() > 0);
     sink.push_back(static_cast<double>(scene.bodies[top].position.y - engine.position(top).y));
     std::printf("| %d | %d | %d | %.4f | %+.5f | %.4f |\n", k, engine.awakeCount(), over, fastest,
                 meanVy.back(), sink.back());
   }
   std::vector<int> crests;  // steps (0-based) where the mean vertical velocity turns downwards
-  for (std::size_t k = 1; k < meanVy.size(); ++k)
+  for (std::size_t k = 1; k < meanVy.size() && awake[k]; ++k)
     if (meanVy[k - 1] > 0 && meanVy[k] <= 0) crests.push_back(static_cast<int>(k));
   // Model (README): a Gauss-Seidel pass cuts the slowest mode of a chain of `base` contacts by
   // mu = pi^2 / base^2; warm-started substeps turn it by sqrt(mu) and shrink it by sqrt(1 - mu)
-  // each. Four substeps a step, as world_bench runs.
+  // each.
   const double pi = 3.14159265358979, mu = pi * pi / (base * base);
   std::printf("\nmodel: period %.1f steps, each trough %.2f of the one before\n",
-              2 * pi / std::sqrt(mu) / 4, std::pow(1 - mu, pi / std::sqrt(mu)));
+              2 * pi / std::sqrt(mu) / defaults.substeps, std::pow(1 - mu, pi / std::sqrt(mu)));
   if (crests.size() < 3) {
     std::printf("measured: fewer than three crests in %d steps\n", steps);
     return 0;

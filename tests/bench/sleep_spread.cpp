@@ -144,14 +144,23 @@ int trace(int base, int steps, bool sleep) {
     troughs.push_back(deepest - sink.back());
     from = crests[c];
   }
+  // A trough at or above the final depth (a pile that does not breathe, whose "crests" are the
+  // rounding of a mean speed near zero) has no ratio to the next.
   double ratio = 0;
-  for (std::size_t c = 1; c < troughs.size(); ++c)
+  int ratios = 0;
+  for (std::size_t c = 1; c < troughs.size(); ++c) {
+    if (troughs[c - 1] <= 0) continue;
     ratio += troughs[c] / troughs[c - 1];
-  ratio /= static_cast<double>(troughs.size() - 1);
+    ++ratios;
+  }
   std::printf("measured: crests at steps");
   for (std::size_t c = 0; c <= cycles; ++c)
     std::printf(" %d", crests[c] + 1);
-  std::printf(", period %.1f steps, each trough %.2f of the one before\n", period, ratio);
+  if (ratios == 0) {
+    std::printf(", period %.1f steps, no trough below the final depth\n", period);
+    return 0;
+  }
+  std::printf(", period %.1f steps, each trough %.2f of the one before\n", period, ratio / ratios);
   return 0;
 }
 

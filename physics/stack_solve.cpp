@@ -1,0 +1,403 @@
+#include "physics/stack_solve.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace rc {
+
+namespace {
+
+// A row's Jacobian on one body: its velocity along the row is dot(j, (vx, vy, w)).
+struct Jac {
+  double x, y, w;
+};
+
+// a . b over n terms in eight running sums, in a fixed order (the same bits on every build and
+// vector width). One running sum is a chain of dependent additions: that chain, not the
+// arithmetic, bounded the triangular solves and the factorisation.
+double dotRun(const double* a, const double* b, std::int32_t n) {
+  // Two-double vectors: the baseline x86-64 (SSE2) holds them in registers, where four-double
+  // ones were split and spilled to the stack.
+  using V = double __attribute__((vector_size(16)));
+  V s0{}, s1{}, s2{}, s3{};
+  std::int32_t k = 0;
+  auto load = [](const double* p) {
+    V v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+  };
+  for (; k + 8 <= n; k += 8) {
+    s0 += load(a + k) * load(b + k);
+    s1 += load(a + k + 2) * load(b + k + 2);
+    s2 += load(a + k + 4) * load(b + k + 4);
+    s3 += load(a + k + 6) * load(b + k + 6);
+  }
+  double tail = 0;
+  for (; k < n; ++k)
+    tail += a[k] * b[k];
+  const V s = (s0 + s1) + (s2 + s3);
+  return (s[0] + s[1]) + tail;
+}
+
+// A carried friction impulse at this fraction of its cone or more: the point was sliding.
+constexpr float kSlidingFraction = 0.99f;
+
+}  // namespace
+
+void StackSolver::build(std::span<const Constraint> constraints, std::span<const float> invMass,
+                        std::span<const float> invInertia, int minDepth, float compliance,
+                        bool layoutKept) {
+  std::swap(rowKeys_, lastRowKeys_);
+  rowKeys_.clear();
+  factorKept_ = false;
+  rows_.clear();
+  order_.clear();
+  unknowns_ = 0;
+  invMass_.assign(invMass.begin(), invMass.end());
+  invInertia_.assign(invInertia.begin(), invInertia.end());
+  const auto n = static_cast<std::int32_t>(invMass.size());
+  const auto C = static_cast<std::int32_t>(constraints.size());
+  auto moving = [](std::int32_t slot, bool moves) { return moves ? slot : -1; };
+  auto touching = [](const Constraint& c) {
+    for (int k = 0; k < c.pointCount; ++k)
+      if (c.separation[k] <= 0.0f) return true;
+    return false;
+  };
+
+  // Adjacency of the moving bodies over touching constraints (compressed rows), and the
+  // sources: bodies resting on something contacts do not move.
+  level_.assign(static_cast<std::size_t>(n), -1);
+  adjStart_.assign(static_cast<std::size_t>(n) + 1, 0);
+  queue_.clear();
+  for (const Constraint& c : constraints) {
+    if (!touching(c)) continue;
+    const std::int32_t a = moving(c.slotA, c.movesA), b = moving(c.slotB, c.movesB);
+    if (a >= 0 && b >= 0) {
+      ++adjStart_[static_cast<std::size_t>(a) + 1];
+      ++adjStart_[static_cast<std::size_t>(b) + 1];
+    } else if (a >= 0 || b >= 0) {
+      const std::int32_t s = a >= 0 ? a : b;
+      if (level_[static_cast<std::size_t>(s)] < 0) {
+        level_[static_cast<std::size_t>(s)] = 0;
+        queue_.push_back(s);
+      }
+    }
+  }
+  if (queue_.empty()) {
+    lastRowKeys_.clear();
+    return;
+  }
+  for (std::int32_t s = 0; s < n; ++s)
+    adjStart_[static_cast<std::size_t>(s) + 1] += adjStart_[static_cast<std::size_t>(s)];
+  adj_.resize(static_cast<std::size_t>(adjStart_[static_cast<std::size_t>(n)]));
+  pos_.assign(adjStart_.begin(), adjStart_.end() - 1);  // fill cursors
+  for (const Constraint& c : constraints) {
+    if (!touching(c)) continue;
+    const std::int32_t a = moving(c.slotA, c.movesA), b = moving(c.slotB, c.movesB);
+    if (a < 0 || b < 0) continue;
+    adj_[static_cast<std::size_t>(pos_[static_cast<std::size_t>(a)]++)] = b;
+    adj_[static_cast<std::size_t>(pos_[static_cast<std::size_t>(b)]++)] = a;
+  }
+  // Breadth first from the sources: each body's level, and the order of the unknowns (level
+  // by level, which keeps the envelope one row of the pile wide).
+  for (std::size_t head = 0; head < queue_.size(); ++head) {
+    const std::int32_t s = queue_[head];
+    const std::int32_t next = level_[static_cast<std::size_t>(s)] + 1;
+    for (std::int32_t e = adjStart_[static_cast<std::size_t>(s)];
+         e < adjStart_[static_cast<std::size_t>(s) + 1]; ++e) {
+      const std::int32_t t = adj_[static_cast<std::size_t>(e)];
+      if (level_[static_cast<std::size_t>(t)] >= 0) continue;
+      level_[static_cast<std::size_t>(t)] = next;
+      queue_.push_back(t);
+    }
+  }
+  // Each group of touching bodies (union-find) and its deepest level.
+  parent_.resize(static_cast<std::size_t>(n));
+  for (std::int32_t s = 0; s < n; ++s)
+    parent_[static_cast<std::size_t>(s)] = s;
+  auto root = [&](std::int32_t x) {
+    while (parent_[static_cast<std::size_t>(x)] != x) {
+      parent_[static_cast<std::size_t>(x)] =
+          parent_[static_cast<std::size_t>(parent_[static_cast<std::size_t>(x)])];
+      x = parent_[static_cast<std::size_t>(x)];
+    }
+    return x;
+  };
+  for (std::int32_t s = 0; s < n; ++s)
+    for (std::int32_t e = adjStart_[static_cast<std::size_t>(s)];
+         e < adjStart_[static_cast<std::size_t>(s) + 1]; ++e) {
+      const std::int32_t ra = root(s), rb = root(adj_[static_cast<std::size_t>(e)]);
+      if (ra != rb) parent_[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
+    }
+  depth_.assign(static_cast<std::size_t>(n), -1);
+  for (const std::int32_t s : queue_) {
+    std::int32_t& d = depth_[static_cast<std::size_t>(root(s))];
+    d = std::max(d, level_[static_cast<std::size_t>(s)]);
+  }
+  pos_.assign(static_cast<std::size_t>(n), -1);
+  for (const std::int32_t s : queue_) {
+    if (depth_[static_cast<std::size_t>(root(s))] < minDepth) continue;
+    pos_[static_cast<std::size_t>(s)] = static_cast<std::int32_t>(order_.size());
+    order_.push_back(s);
+  }
+  if (order_.empty()) {
+    lastRowKeys_.clear();
+    return;
+  }
+  bool allCarried = true;
+
+  // The rows: every touching point of a constraint on a pile's body.
+  for (std::int32_t i = 0; i < C; ++i) {
+    const Constraint& c = constraints[static_cast<std::size_t>(i)];
+    const std::int32_t a = moving(c.slotA, c.movesA), b = moving(c.slotB, c.movesB);
+    const std::int32_t pa = a >= 0 ? pos_[static_cast<std::size_t>(a)] : -1;
+    const std::int32_t pb = b >= 0 ? pos_[static_cast<std::size_t>(b)] : -1;
+    if (pa < 0 && pb < 0) continue;
+    // Only the support: a contact between two bodies of one level (neighbours in a row) is
+    // left to the passes. Solved exactly with the rest, such a contact is asked to pull (the
+    // row spreads as the pile settles), the projection drops the pull, and the rest of the
+    // correction, which counted on it, is then wrong: that grew without bound on a base-40
+    // pyramid.
+    if (pa >= 0 && pb >= 0 &&
+        level_[static_cast<std::size_t>(a)] == level_[static_cast<std::size_t>(b)])
+      continue;
+    const Vec2 t{c.normal.y, -c.normal.x};
+    for (int k = 0; k < c.pointCount; ++k) {
+      if (c.separation[k] > 0.0f) continue;
+      Row r;
+      r.constraint = i;
+      r.point = k;
+      r.slotA = c.slotA;
+      r.slotB = c.slotB;
+      r.posA = pa;
+      r.posB = pb;
+      r.n = c.normal;
+      r.rnA = cross(c.rA[k], c.normal);
+      r.rnB = cross(c.rB[k], c.normal);
+      r.rtA = cross(c.rA[k], t);
+      r.rtB = cross(c.rB[k], t);
+      double kn = 0, kt = 0;
+      if (pa >= 0) {
+        const double im = invMass[static_cast<std::size_t>(a)];
+        const double ii = invInertia[static_cast<std::size_t>(a)];
+        kn += im + ii * r.rnA * r.rnA;
+        kt += im + ii * r.rtA * r.rtA;
+      }
+      if (pb >= 0) {
+        const double im = invMass[static_cast<std::size_t>(b)];
+        const double ii = invInertia[static_cast<std::size_t>(b)];
+        kn += im + ii * r.rnB * r.rnB;
+        kt += im + ii * r.rtB * r.rtB;
+      }
+      if (kn <= 0 || kt <= 0) continue;
+      r.weightN = 1.0 / (compliance * kn);
+      // Friction's row where the point sticks: without the tangents in the system a pile's
+      // sideways mode grows (its normal impulses answered by friction only in the passes). A
+      // point that slid last step (its friction at the cone) or has none is left out: solved
+      // as if it stuck, its friction would then be cut back to the cone and the normal
+      // impulses that balanced it would be wrong (a sliding box spun). A point with no load
+      // yet counts as sticking; leaving those out made a base-40 pyramid fall.
+      const float tn = c.normalImpulse[k], tt = std::abs(c.tangentImpulse[k]);
+      const bool slid = tn > 0.0f && tt >= kSlidingFraction * c.friction * tn;
+      r.weightT = c.friction > 0.0f && !slid ? 1.0 / (compliance * kt) : 0.0;
+      r.friction = c.friction;
+      rows_.push_back(r);
+      allCarried = allCarried && c.carried;
+      rowKeys_.push_back((static_cast<std::int64_t>(i) << 1 | k) << 40 |
+                         (static_cast<std::int64_t>(pa + 1) << 20) | (pb + 1));
+    }
+  }
+
+  unknowns_ = 3 * static_cast<std::int32_t>(order_.size());
+  if (layoutKept && allCarried && rowKeys_ == lastRowKeys_) {
+    factorKept_ = true;
+    return;
+  }
+  // The envelope: an unknown's row reaches back to the first unknown of the earliest body it
+  // touches.
+  const auto bodies = static_cast<std::int32_t>(order_.size());
+  unknowns_ = 3 * bodies;
+  std::vector<std::int32_t>& firstBody = depth_;  // reused: per position
+  firstBody.resize(static_cast<std::size_t>(bodies));
+  for (std::int32_t p = 0; p < bodies; ++p)
+    firstBody[static_cast<std::size_t>(p)] = p;
+  for (const Row& r : rows_) {
+    if (r.posA < 0 || r.posB < 0) continue;
+    const std::int32_t lo = std::min(r.posA, r.posB), hi = std::max(r.posA, r.posB);
+    std::int32_t& f = firstBody[static_cast<std::size_t>(hi)];
+    f = std::min(f, lo);
+  }
+  first_.resize(static_cast<std::size_t>(unknowns_));
+  start_.resize(static_cast<std::size_t>(unknowns_) + 1);
+  std::size_t size = 0;
+  for (std::int32_t u = 0; u < unknowns_; ++u) {
+    first_[static_cast<std::size_t>(u)] = 3 * firstBody[static_cast<std::size_t>(u / 3)];
+    start_[static_cast<std::size_t>(u)] = size;
+    size += static_cast<std::size_t>(u - first_[static_cast<std::size_t>(u)] + 1);
+  }
+  start_[static_cast<std::size_t>(unknowns_)] = size;
+  factor_.assign(size, 0.0);
+  auto at = [&](std::int32_t i, std::int32_t j) -> double& {  // j <= i, inside the envelope
+    return factor_[start_[static_cast<std::size_t>(i)] +
+                   static_cast<std::size_t>(j - first_[static_cast<std::size_t>(i)])];
+  };
+
+  // K = M + J^T W J. A direction a body cannot move in (infinite mass or inertia: a
+  // fixed-rotation body's turn) keeps a unit diagonal and no coupling, so its change is 0.
+  auto inverse = [&](std::int32_t p, int d) {
+    const auto s = static_cast<std::size_t>(order_[static_cast<std::size_t>(p)]);
+    return d < 2 ? static_cast<double>(invMass[s]) : static_cast<double>(invInertia[s]);
+  };
+  for (std::int32_t p = 0; p < bodies; ++p)
+    for (int d = 0; d < 3; ++d) {
+      const double im = inverse(p, d);
+      at(3 * p + d, 3 * p + d) = im > 0 ? 1.0 / im : 1.0;
+    }
+  auto addOuter = [&](std::int32_t p, const Jac& jp, std::int32_t q, const Jac& jq, double w) {
+    // Block (p, q) with p >= q; on the diagonal only its lower half.
+    const double ap[3] = {jp.x, jp.y, jp.w}, aq[3] = {jq.x, jq.y, jq.w};
+    for (int d = 0; d < 3; ++d) {
+      if (inverse(p, d) <= 0) continue;
+      for (int e = 0; e < 3; ++e) {
+        if (inverse(q, e) <= 0 || (p == q && e > d)) continue;
+        at(3 * p + d, 3 * q + e) += w * ap[d] * aq[e];
+      }
+    }
+  };
+  for (const Row& r : rows_) {
+    const Vec2 t{r.n.y, -r.n.x};
+    const Jac nA{-r.n.x, -r.n.y, -r.rnA}, nB{r.n.x, r.n.y, r.rnB};
+    const Jac tA{-t.x, -t.y, -r.rtA}, tB{t.x, t.y, r.rtB};
+    for (int pass = 0; pass < 2; ++pass) {
+      const Jac& jA = pass == 0 ? nA : tA;
+      const Jac& jB = pass == 0 ? nB : tB;
+      const double w = pass == 0 ? r.weightN : r.weightT;
+      if (r.posA >= 0) addOuter(r.posA, jA, r.posA, jA, w);
+      if (r.posB >= 0) addOuter(r.posB, jB, r.posB, jB, w);
+      if (r.posA >= 0 && r.posB >= 0) {
+        if (r.posA > r.posB)
+          addOuter(r.posA, jA, r.posB, jB, w);
+        else
+          addOuter(r.posB, jB, r.posA, jA, w);
+      }
+    }
+  }
+
+  // Cholesky, row by row within the envelope (fill stays inside it). Row i holds columns
+  // first_[i] to i.
+  for (std::int32_t i = 0; i < unknowns_; ++i) {
+    const std::int32_t fi = first_[static_cast<std::size_t>(i)];
+    double* li = &factor_[start_[static_cast<std::size_t>(i)]];
+    for (std::int32_t j = fi; j < i; ++j) {
+      const std::int32_t fj = first_[static_cast<std::size_t>(j)];
+      const double* lj = &factor_[start_[static_cast<std::size_t>(j)]];
+      const std::int32_t k0 = std::max(fi, fj);
+      li[j - fi] = (li[j - fi] - dotRun(li + (k0 - fi), lj + (k0 - fj), j - k0)) / lj[j - fj];
+    }
+    // K is positive definite (M's diagonal alone is); the floor only keeps rounding from
+    // taking a square root of a negative.
+    const double d = li[i - fi] - dotRun(li, li, i - fi);
+    li[i - fi] = std::sqrt(std::max(d, 1e-300));
+  }
+}
+
+void StackSolver::correct(std::span<SolverBody> bodies, std::span<float> impulses) const {
+  if (unknowns_ == 0) return;
+  rhs_.assign(static_cast<std::size_t>(unknowns_), 0.0);
+  vn_.resize(rows_.size());
+  vt_.resize(rows_.size());
+  // Each row's velocity, and the right-hand side -J^T W J v.
+  for (std::size_t ri = 0; ri < rows_.size(); ++ri) {
+    const Row& r = rows_[ri];
+    const Vec2 t{r.n.y, -r.n.x};
+    double vn = 0, vt = 0;
+    if (r.slotA >= 0) {
+      const SolverBody& a = bodies[static_cast<std::size_t>(r.slotA)];
+      vn -= static_cast<double>(dot(a.v, r.n)) + static_cast<double>(a.w) * r.rnA;
+      vt -= static_cast<double>(dot(a.v, t)) + static_cast<double>(a.w) * r.rtA;
+    }
+    if (r.slotB >= 0) {
+      const SolverBody& b = bodies[static_cast<std::size_t>(r.slotB)];
+      vn += static_cast<double>(dot(b.v, r.n)) + static_cast<double>(b.w) * r.rnB;
+      vt += static_cast<double>(dot(b.v, t)) + static_cast<double>(b.w) * r.rtB;
+    }
+    vn_[ri] = vn;
+    vt_[ri] = vt;
+    const double fn = -r.weightN * vn, ft = -r.weightT * vt;
+    if (r.posA >= 0) {
+      double* x = &rhs_[3 * static_cast<std::size_t>(r.posA)];
+      x[0] -= fn * r.n.x + ft * t.x;
+      x[1] -= fn * r.n.y + ft * t.y;
+      x[2] -= fn * r.rnA + ft * r.rtA;
+    }
+    if (r.posB >= 0) {
+      double* x = &rhs_[3 * static_cast<std::size_t>(r.posB)];
+      x[0] += fn * r.n.x + ft * t.x;
+      x[1] += fn * r.n.y + ft * t.y;
+      x[2] += fn * r.rnB + ft * r.rtB;
+    }
+  }
+  // Directions a body cannot move in have no right-hand side (their unit diagonal gives 0).
+  for (std::int32_t p = 0; p < unknowns_ / 3; ++p) {
+    const auto s = static_cast<std::size_t>(order_[static_cast<std::size_t>(p)]);
+    if (invMass_[s] <= 0)
+      rhs_[3 * static_cast<std::size_t>(p)] = 0, rhs_[3 * static_cast<std::size_t>(p) + 1] = 0;
+    if (invInertia_[s] <= 0) rhs_[3 * static_cast<std::size_t>(p) + 2] = 0;
+  }
+  // L y = b, then L^T e = y.
+  double* x = rhs_.data();
+  for (std::int32_t i = 0; i < unknowns_; ++i) {
+    const std::int32_t fi = first_[static_cast<std::size_t>(i)];
+    const double* li = &factor_[start_[static_cast<std::size_t>(i)]];
+    x[i] = (x[i] - dotRun(li, x + fi, i - fi)) / li[i - fi];
+  }
+  for (std::int32_t i = unknowns_ - 1; i >= 0; --i) {
+    const std::int32_t fi = first_[static_cast<std::size_t>(i)];
+    const double* li = &factor_[start_[static_cast<std::size_t>(i)]];
+    const double xi = x[i] / li[i - fi];
+    x[i] = xi;
+    for (std::int32_t k = fi; k < i; ++k)
+      x[k] -= li[k - fi] * xi;
+  }
+  // Each point's impulse change from the corrected velocities, projected onto its cone, and
+  // exactly that change applied.
+  for (std::size_t ri = 0; ri < rows_.size(); ++ri) {
+    const Row& r = rows_[ri];
+    const Vec2 t{r.n.y, -r.n.x};
+    double un = vn_[ri], ut = vt_[ri];
+    if (r.posA >= 0) {
+      const double* e = &x[3 * static_cast<std::size_t>(r.posA)];
+      un -= e[0] * r.n.x + e[1] * r.n.y + e[2] * r.rnA;
+      ut -= e[0] * t.x + e[1] * t.y + e[2] * r.rtA;
+    }
+    if (r.posB >= 0) {
+      const double* e = &x[3 * static_cast<std::size_t>(r.posB)];
+      un += e[0] * r.n.x + e[1] * r.n.y + e[2] * r.rnB;
+      ut += e[0] * t.x + e[1] * t.y + e[2] * r.rtB;
+    }
+    float& ln =
+        impulses[4 * static_cast<std::size_t>(r.constraint) + static_cast<std::size_t>(r.point)];
+    float& lt = impulses[4 * static_cast<std::size_t>(r.constraint) + 2 +
+                         static_cast<std::size_t>(r.point)];
+    const float n1 = std::max(ln + static_cast<float>(-r.weightN * un), 0.0f);
+    const float limit = r.friction * n1;
+    const float t1 = std::clamp(lt + static_cast<float>(-r.weightT * ut), -limit, limit);
+    const float dn = n1 - ln, dt = t1 - lt;
+    ln = n1;
+    lt = t1;
+    const Vec2 impulse = dn * r.n + dt * t;
+    if (r.posA >= 0) {
+      const auto s = static_cast<std::size_t>(r.slotA);
+      bodies[s].v -= invMass_[s] * impulse;
+      bodies[s].w -= invInertia_[s] * (dn * r.rnA + dt * r.rtA);
+    }
+    if (r.posB >= 0) {
+      const auto s = static_cast<std::size_t>(r.slotB);
+      bodies[s].v += invMass_[s] * impulse;
+      bodies[s].w += invInertia_[s] * (dn * r.rnB + dt * r.rtB);
+    }
+  }
+}
+
+}  // namespace rc

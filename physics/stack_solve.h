@@ -1,0 +1,98 @@
+// Ricochet physics: the direct solve of a resting pile's contacts.
+//
+// Gauss-Seidel passes fix a contact's error locally; a pile of N rows carries its load down N
+// contacts, and a pass takes out only pi^2 / N^2 of the slowest (whole-pile) error, so a tall
+// pile breathes and sways for hundreds of steps before it is still (tests/bench/README.md, "When
+// a settled pile sleeps"). After each relax pass this solve takes out what the passes left:
+// every touching point's normal and tangent velocity driven to zero at once, exactly, as a
+// linear system, then each point's impulse projected back onto its cone (normal impulse not
+// below 0, tangent within friction times normal) and exactly those changes applied.
+//
+// The system is written in the bodies' velocities (three unknowns a body, coupled where bodies
+// touch) rather than in the contact impulses (two a point, coupled through every body they
+// share): (M + J^T C^-1 J) e = -J^T C^-1 J v, with C a small compliance (a fraction of each row's
+// own effective mass inverse) which makes the statically indeterminate support (a box on two
+// boxes) well posed. It is the same correction as the impulse form (Woodbury's identity:
+// lambda = -(J M^-1 J^T + C)^-1 J v), on a matrix a third the size whose envelope in order of
+// distance from the ground is one row of the pile wide. Factored by Cholesky in double.
+//
+// Only piles get it: bodies joined by contacts to a static, sleeping or kinematic body, in a
+// group whose deepest body is at least minDepth contacts away from it (a crowd on the floor is
+// one or two deep and pays only the breadth-first pass).
+//
+// Not yet in the step: in WorldState::solve after each relax pass it holds a base-40 pyramid
+// still from its first steps (asleep at step 30, the top 0.3 mm down, against 217 and 52 mm),
+// but costs several times the step it corrects (tests/bench/README.md, "Session 27"); the
+// wiring is tests/bench/prototypes/stack_solve_wiring.patch.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "physics/contact_solver.h"
+#include "physics/math.h"
+
+namespace rc {
+
+class StackSolver {
+ public:
+  // What the solve needs of one constraint (prepare's order). slotA / slotB as the contact
+  // solver's (-1: static or asleep); moves: contacts change that body's velocity.
+  struct Constraint {
+    std::int32_t slotA = -1, slotB = -1;
+    bool movesA = false, movesB = false;
+    int pointCount = 0;
+    Vec2 normal{};
+    float friction = 0;
+    Vec2 rA[2]{}, rB[2]{};
+    float separation[2]{};
+    float normalImpulse[2]{}, tangentImpulse[2]{};  // carried from the last step
+    // Its manifold carried from the last step (recycled: the pair has barely moved since it
+    // was made), so its rows have barely changed either.
+    bool carried = false;
+  };
+
+  // Finds the piles and factors their system. invMass / invInertia per solver slot. The last
+  // factor is kept where it still fits: layoutKept (the same constraints as last step), the
+  // same rows, every one of them carried.
+  void build(std::span<const Constraint> constraints, std::span<const float> invMass,
+             std::span<const float> invInertia, int minDepth, float compliance, bool layoutKept);
+  bool factorKept() const { return factorKept_; }
+  bool active() const { return unknowns_ > 0; }
+  // After a relax pass: the correction, applied to the bodies; impulses as
+  // ContactSolver::impulses (four a constraint), read and updated in place.
+  void correct(std::span<SolverBody> bodies, std::span<float> impulses) const;
+
+  int unknowns() const { return unknowns_; }
+  std::size_t factorSize() const { return factor_.size(); }
+
+ private:
+  // One touching point of a pile's constraint: its two rows, normal and tangent.
+  struct Row {
+    std::int32_t constraint;
+    int point;
+    std::int32_t slotA, slotB;  // for the velocities (-1: none)
+    std::int32_t posA, posB;    // in the system (-1: not an unknown)
+    Vec2 n;
+    float rnA, rnB, rtA, rtB;
+    double weightN, weightT;  // 1 / compliance of each row
+    float friction;
+  };
+  std::vector<Row> rows_;
+  std::vector<float> invMass_, invInertia_;  // per solver slot
+  std::vector<std::int32_t> order_;          // system position -> solver slot
+  std::vector<std::int32_t> first_;          // per unknown: its row's first column in the envelope
+  std::vector<std::size_t> start_;           // per unknown: where its row begins in factor_
+  std::vector<double> factor_;               // L, row by row over each row's envelope
+  int unknowns_ = 0;
+  bool factorKept_ = false;
+  std::vector<std::int64_t> rowKeys_, lastRowKeys_;
+  // Scratch, kept to save allocations.
+  std::vector<std::int32_t> level_, pos_, queue_, parent_, depth_;
+  std::vector<std::int32_t> adjStart_, adj_;
+  mutable std::vector<double> rhs_;
+  mutable std::vector<double> vn_, vt_;
+};
+
+}  // namespace rc

@@ -1,0 +1,320 @@
+// The direct solve of a pile's contacts (physics/stack_solve.h) alone, on hand-built piles,
+// against closed forms: a column's contacts carry the weight above them and stop every box in
+// a few corrections (one gives the compliant chain's answer); a box on two boxes loads both alike;
+// a sliding box is left to slide and does not spin; a box leaving the ground is not pulled back;
+// neighbours in a row are left alone; bodies that cannot turn do not; the factor is kept only while
+// it still fits.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "physics/stack_solve.h"
+
+namespace stack_solve_test {
+
+using rc::SolverBody;
+using rc::StackSolver;
+using rc::Vec2;
+
+constexpr float kG = 10.0f;
+constexpr float kH = 1.0f / 240.0f;  // a substep at 60 Hz, 4 substeps
+// The compliance the world would solve with (a fraction of each row's effective mass inverse).
+// What it lets through (a row's velocity is its compliance times its impulse change) is a few
+// parts in a thousand of a substep's fall: where a test needs the answer of a rigid contact it
+// compares with that of the same compliant contacts, worked out another way.
+constexpr float kStiff = 1e-3f;
+
+// A unit box (1 kg, 1 m square) resting on what is below it (slot -1: the ground) across its
+// bottom edge: two points at its corners, separation -2.5 mm.
+StackSolver::Constraint onTop(std::int32_t below, std::int32_t above, float friction = 0.6f) {
+  StackSolver::Constraint c;
+  c.slotA = below;
+  c.slotB = above;
+  c.movesA = below >= 0;
+  c.movesB = true;
+  c.pointCount = 2;
+  c.normal = {0.0f, 1.0f};
+  c.friction = friction;
+  for (int k = 0; k < 2; ++k) {
+    const float x = k == 0 ? -0.5f : 0.5f;
+    c.rA[k] = {x, 0.5f};
+    c.rB[k] = {x, -0.5f};
+    c.separation[k] = -0.0025f;
+  }
+  return c;
+}
+
+struct Pile {
+  std::vector<StackSolver::Constraint> constraints;
+  std::vector<float> invMass, invInertia;
+  std::vector<SolverBody> bodies;  // one more: the null body
+  std::vector<float> impulses;
+
+  explicit Pile(int n) : invMass(n, 1.0f), invInertia(n, 6.0f), bodies(n + 1) {}
+  void finish() { impulses.assign(4 * constraints.size(), 0.0f); }
+  // Every box as after a substep's free fall from rest.
+  void falling() {
+    for (std::size_t s = 0; s + 1 < bodies.size(); ++s)
+      bodies[s].v = {0.0f, -kG * kH};
+  }
+  float normal(std::size_t c, int k) const { return impulses[4 * c + k]; }
+  float tangent(std::size_t c, int k) const { return impulses[4 * c + 2 + k]; }
+};
+
+// The column by symmetry as a chain of masses: nothing turns, the two points of a contact carry
+// half its impulse each, and a contact's closing speed is its points' compliance times that
+// half. Box j's velocity u_j after the correction solves
+//   m (u_j - v0) = L_j - L_{j+1},  L_j = -(2 / c_j) (u_j - u_{j-1})  (u_{-1} = 0, L_N = 0),
+// a tridiagonal system, solved here by elimination in double.
+std::vector<double> chainImpulses(int n, double v0, double compliance) {
+  // A point's effective mass inverse: 1 / m and i r_n^2 (r_n = 0.5) for each moving side.
+  auto weight = [&](int j) { return 2.0 / (compliance * (j == 0 ? 2.5 : 5.0)); };
+  std::vector<double> lower(n), diag(n), upper(n), rhs(n, v0);
+  for (int j = 0; j < n; ++j) {
+    diag[j] = 1.0 + weight(j) + (j + 1 < n ? weight(j + 1) : 0.0);
+    lower[j] = j > 0 ? -weight(j) : 0.0;
+    upper[j] = j + 1 < n ? -weight(j + 1) : 0.0;
+  }
+  for (int j = 1; j < n; ++j) {
+    const double f = lower[j] / diag[j - 1];
+    diag[j] -= f * upper[j - 1];
+    rhs[j] -= f * rhs[j - 1];
+  }
+  std::vector<double> u(n);
+  for (int j = n - 1; j >= 0; --j)
+    u[j] = (rhs[j] - (j + 1 < n ? upper[j] * u[j + 1] : 0.0)) / diag[j];
+  std::vector<double> impulse(n);
+  for (int j = 0; j < n; ++j)
+    impulse[j] = -weight(j) * (u[j] - (j > 0 ? u[j - 1] : 0.0));
+  return impulse;
+}
+
+TEST(StackSolve, AColumnCarriesTheWeightAboveEachContactAndStops) {
+  constexpr int kN = 20;
+  Pile pile(kN);
+  pile.constraints.push_back(onTop(-1, 0));
+  for (int j = 1; j < kN; ++j)
+    pile.constraints.push_back(onTop(j - 1, j));
+  pile.finish();
+  pile.falling();
+  StackSolver solver;
+  solver.build(pile.constraints, pile.invMass, pile.invInertia, 1, kStiff, false);
+  ASSERT_TRUE(solver.active());
+  EXPECT_EQ(solver.unknowns(), 3 * kN);
+  solver.correct(pile.bodies, pile.impulses);
+  const std::vector<double> chain = chainImpulses(kN, -kG * kH, kStiff);
+  const float fall = kG * kH;
+  for (int j = 0; j < kN; ++j) {
+    const float weight = static_cast<float>(kN - j) * fall;
+    // The compliant chain's answer, to float rounding (the impulses are sums of about 20
+    // terms of the fall's size).
+    EXPECT_NEAR(pile.normal(j, 0) + pile.normal(j, 1), chain[j], 1e-5 * weight) << j;
+    EXPECT_NEAR(pile.normal(j, 0), pile.normal(j, 1), 1e-5f * weight) << j;
+    EXPECT_NEAR(pile.tangent(j, 0) + pile.tangent(j, 1), 0.0f, 1e-6f) << j;
+  }
+  // What the compliance let through (a quarter of the load at the bottom of 20 boxes: it
+  // grows as the square of the height) is what the next correction takes out, as the next
+  // substep's would: each leaves a fraction of the last one's residual, so a few give the
+  // rigid column's answer, every contact carrying the boxes above it and every box still.
+  for (int again = 0; again < 30; ++again)
+    solver.correct(pile.bodies, pile.impulses);
+  for (int j = 0; j < kN; ++j) {
+    const float weight = static_cast<float>(kN - j) * fall;
+    EXPECT_NEAR(pile.normal(j, 0) + pile.normal(j, 1), weight, 1e-4f * weight) << j;
+  }
+  for (int s = 0; s < kN; ++s) {
+    EXPECT_NEAR(pile.bodies[s].v.x, 0.0f, 1e-6f) << s;
+    EXPECT_NEAR(pile.bodies[s].v.y, 0.0f, 1e-4f * fall) << s;
+    EXPECT_NEAR(pile.bodies[s].w, 0.0f, 1e-6f) << s;
+  }
+}
+
+TEST(StackSolve, ABoxOnTwoBoxesLoadsBothAlike) {
+  // Boxes 0 and 1 on the ground at x = -0.5 and 0.5, box 2 on both at x = 0: each upper
+  // contact spans half a box, from the lower box's inner corner to its middle.
+  Pile pile(3);
+  pile.constraints.push_back(onTop(-1, 0));
+  pile.constraints.push_back(onTop(-1, 1));
+  for (int side = 0; side < 2; ++side) {
+    StackSolver::Constraint c = onTop(side, 2);
+    const float inner = side == 0 ? 0.5f : -0.5f;  // the lower box's corner under the middle
+    c.rA[0] = {0.0f, 0.5f};
+    c.rA[1] = {inner, 0.5f};
+    c.rB[0] = {-inner, -0.5f};
+    c.rB[1] = {0.0f, -0.5f};
+    pile.constraints.push_back(c);
+  }
+  pile.finish();
+  pile.falling();
+  StackSolver solver;
+  solver.build(pile.constraints, pile.invMass, pile.invInertia, 1, kStiff, false);
+  // As in the substeps, each correction takes out what the compliance let through the last.
+  for (int again = 0; again < 30; ++again)
+    solver.correct(pile.bodies, pile.impulses);
+  const float one = kG * kH;
+  const float left = pile.normal(2, 0) + pile.normal(2, 1);
+  const float right = pile.normal(3, 0) + pile.normal(3, 1);
+  EXPECT_NEAR(left + right, one, 1e-5f);
+  EXPECT_NEAR(left, right, 1e-5f);
+  EXPECT_NEAR(pile.normal(0, 0) + pile.normal(0, 1), 1.5f * one, 1e-5f);
+  EXPECT_NEAR(pile.normal(1, 0) + pile.normal(1, 1), 1.5f * one, 1e-5f);
+  for (int s = 0; s < 3; ++s) {
+    EXPECT_NEAR(pile.bodies[s].v.y, 0.0f, 1e-6f) << s;
+    EXPECT_NEAR(pile.bodies[s].w, 0.0f, 1e-6f) << s;
+  }
+}
+
+TEST(StackSolve, ASlidingBoxIsLeftToSlideAndDoesNotSpin) {
+  // Two boxes, one on the other, the lower one sliding at 2 m/s, its ground points' friction
+  // at the cone last step: the solve holds both up and leaves the sliding friction to the
+  // passes. Solved as if it stuck, the ground friction would have been cut back to the cone
+  // after the normal impulses had been chosen to balance all of it, and the box would spin.
+  constexpr float kMu = 0.5f;
+  Pile pile(2);
+  pile.constraints.push_back(onTop(-1, 0, kMu));
+  pile.constraints.push_back(onTop(0, 1, kMu));
+  for (int k = 0; k < 2; ++k) {
+    pile.constraints[0].normalImpulse[k] = kG * kH;
+    pile.constraints[0].tangentImpulse[k] = -kMu * kG * kH;
+  }
+  pile.finish();
+  pile.falling();
+  pile.bodies[0].v.x = 2.0f;
+  pile.bodies[1].v.x = 2.0f;
+  StackSolver solver;
+  solver.build(pile.constraints, pile.invMass, pile.invInertia, 1, kStiff, false);
+  for (int again = 0; again < 30; ++again)
+    solver.correct(pile.bodies, pile.impulses);
+  const float fall = kG * kH;
+  EXPECT_NEAR(pile.normal(0, 0) + pile.normal(0, 1), 2.0f * fall, 1e-4f * fall);
+  EXPECT_NEAR(pile.normal(1, 0) + pile.normal(1, 1), fall, 1e-4f * fall);
+  for (int s = 0; s < 2; ++s) {
+    EXPECT_NEAR(pile.bodies[s].v.x, 2.0f, 1e-5f) << s;
+    EXPECT_NEAR(pile.bodies[s].v.y, 0.0f, 1e-4f * fall) << s;
+    EXPECT_NEAR(pile.bodies[s].w, 0.0f, 1e-4f * fall) << s;
+  }
+}
+
+TEST(StackSolve, ABoxLeavingTheGroundIsNotPulledBack) {
+  Pile pile(2);
+  pile.constraints.push_back(onTop(-1, 0));
+  pile.constraints.push_back(onTop(0, 1));
+  pile.finish();
+  pile.bodies[0].v = {0.3f, 1.0f};
+  pile.bodies[1].v = {0.3f, 1.0f};
+  StackSolver solver;
+  solver.build(pile.constraints, pile.invMass, pile.invInertia, 1, kStiff, false);
+  solver.correct(pile.bodies, pile.impulses);
+  for (float impulse : pile.impulses)
+    EXPECT_EQ(impulse, 0.0f);
+  for (int s = 0; s < 2; ++s) {
+    EXPECT_EQ(pile.bodies[s].v.x, 0.3f);
+    EXPECT_EQ(pile.bodies[s].v.y, 1.0f);
+    EXPECT_EQ(pile.bodies[s].w, 0.0f);
+  }
+}
+
+TEST(StackSolve, NeighboursInARowAreLeftToThePasses) {
+  // Two boxes on frictionless ground closing on each other sideways at 1 m/s: their contact
+  // joins two bodies of one level, so the solve leaves it (and their sideways motion) alone.
+  Pile pile(2);
+  pile.constraints.push_back(onTop(-1, 0, 0.0f));
+  pile.constraints.push_back(onTop(-1, 1, 0.0f));
+  StackSolver::Constraint side;
+  side.slotA = 0;
+  side.slotB = 1;
+  side.movesA = side.movesB = true;
+  side.pointCount = 2;
+  side.normal = {1.0f, 0.0f};
+  for (int k = 0; k < 2; ++k) {
+    const float y = k == 0 ? -0.5f : 0.5f;
+    side.rA[k] = {0.5f, y};
+    side.rB[k] = {-0.5f, y};
+    side.separation[k] = -0.001f;
+  }
+  pile.constraints.push_back(side);
+  // And a box on top of box 0, so that the pile is two deep.
+  pile.constraints.push_back(onTop(0, 2, 0.0f));
+  pile.invMass.push_back(1.0f);
+  pile.invInertia.push_back(6.0f);
+  pile.bodies.emplace_back();
+  pile.finish();
+  pile.falling();
+  pile.bodies[0].v.x = 1.0f;
+  pile.bodies[1].v.x = -1.0f;
+  pile.bodies[2].v.x = 1.0f;
+  StackSolver solver;
+  solver.build(pile.constraints, pile.invMass, pile.invInertia, 1, kStiff, false);
+  ASSERT_TRUE(solver.active());
+  for (int again = 0; again < 30; ++again)
+    solver.correct(pile.bodies, pile.impulses);
+  EXPECT_EQ(pile.normal(2, 0), 0.0f);
+  EXPECT_EQ(pile.normal(2, 1), 0.0f);
+  EXPECT_NEAR(pile.bodies[0].v.x, 1.0f, 1e-6f);
+  EXPECT_NEAR(pile.bodies[1].v.x, -1.0f, 1e-6f);
+  EXPECT_NEAR(pile.bodies[0].v.y, 0.0f, 1e-6f);
+  EXPECT_NEAR(pile.bodies[2].v.y, 0.0f, 1e-6f);
+}
+
+TEST(StackSolve, ABodyThatCannotTurnDoesNot) {
+  Pile pile(2);
+  pile.invInertia = {0.0f, 0.0f};  // fixed rotation
+  pile.constraints.push_back(onTop(-1, 0));
+  StackSolver::Constraint off = onTop(0, 1);  // the upper box half off the lower one's edge
+  off.rA[0] = {0.0f, 0.5f};
+  off.rB[0] = {-0.5f, -0.5f};
+  off.rB[1] = {0.0f, -0.5f};
+  pile.constraints.push_back(off);
+  pile.finish();
+  pile.falling();
+  StackSolver solver;
+  solver.build(pile.constraints, pile.invMass, pile.invInertia, 1, kStiff, false);
+  for (int again = 0; again < 30; ++again)
+    solver.correct(pile.bodies, pile.impulses);
+  EXPECT_EQ(pile.bodies[0].w, 0.0f);
+  EXPECT_EQ(pile.bodies[1].w, 0.0f);
+  EXPECT_NEAR(pile.bodies[1].v.y, 0.0f, 1e-6f);
+  EXPECT_NEAR(pile.normal(1, 0) + pile.normal(1, 1), kG * kH, 1e-5f);
+}
+
+TEST(StackSolve, OnlyPilesAtLeastMinDepthDeepAreSolved) {
+  Pile pile(2);
+  pile.constraints.push_back(onTop(-1, 0));
+  pile.constraints.push_back(onTop(0, 1));
+  pile.finish();
+  StackSolver solver;
+  solver.build(pile.constraints, pile.invMass, pile.invInertia, 1, kStiff, false);
+  EXPECT_TRUE(solver.active());  // levels 0 and 1
+  solver.build(pile.constraints, pile.invMass, pile.invInertia, 2, kStiff, false);
+  EXPECT_FALSE(solver.active());
+  // Nothing resting on the ground: not a pile.
+  std::vector<StackSolver::Constraint> flying{onTop(0, 1)};
+  solver.build(flying, pile.invMass, pile.invInertia, 0, kStiff, false);
+  EXPECT_FALSE(solver.active());
+}
+
+TEST(StackSolve, TheFactorIsKeptOnlyWhileItFits) {
+  Pile pile(3);
+  for (int j = 0; j < 3; ++j)
+    pile.constraints.push_back(onTop(j - 1, j));
+  for (auto& c : pile.constraints)
+    c.carried = true;
+  pile.finish();
+  StackSolver solver;
+  solver.build(pile.constraints, pile.invMass, pile.invInertia, 1, kStiff, true);
+  EXPECT_FALSE(solver.factorKept());  // nothing to keep yet
+  solver.build(pile.constraints, pile.invMass, pile.invInertia, 1, kStiff, true);
+  EXPECT_TRUE(solver.factorKept());
+  solver.build(pile.constraints, pile.invMass, pile.invInertia, 1, kStiff, false);
+  EXPECT_FALSE(solver.factorKept());  // the layout changed
+  pile.constraints[1].carried = false;
+  solver.build(pile.constraints, pile.invMass, pile.invInertia, 1, kStiff, true);
+  EXPECT_FALSE(solver.factorKept());  // a manifold made again
+  pile.constraints[1].carried = true;
+  pile.constraints[2].separation[1] = 0.01f;  // a point lifted off
+  solver.build(pile.constraints, pile.invMass, pile.invInertia, 1, kStiff, true);
+  EXPECT_FALSE(solver.factorKept());
+}
+
+}  // namespace stack_solve_test

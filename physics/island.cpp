@@ -4,6 +4,7 @@
 #include <limits>
 #include <vector>
 
+#include "physics/union_find.h"
 #include "physics/world.h"
 #include "physics/world_state.h"
 
@@ -82,14 +83,7 @@ void WorldState::updateSleep(float dt) {
   // islands are numbered and filled in slot order below).
   std::vector<std::int32_t>& size = islandSize_;
   size.assign(n, 1);
-  auto root = [&](std::int32_t x) {
-    while (islandParent_[static_cast<std::size_t>(x)] != x) {
-      islandParent_[static_cast<std::size_t>(x)] =
-          islandParent_[static_cast<std::size_t>(islandParent_[static_cast<std::size_t>(x)])];
-      x = islandParent_[static_cast<std::size_t>(x)];
-    }
-    return x;
-  };
+  auto root = [&](std::int32_t x) { return unionFindRoot(islandParent_, x); };
   // An island touching something that moves and cannot join it (a moving kinematic body)
   // stays awake: its root gets a still time of 0 below. So does one with a contact deeper
   // than a quarter of its thinner dynamic body (or two slops, for slivers): a load settles on

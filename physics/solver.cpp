@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "physics/constants.h"
+#include "physics/union_find.h"
 #include "physics/world.h"
 #include "physics/world_state.h"
 
@@ -250,14 +251,7 @@ void WorldState::prepareBounceGroups() {
     for (const std::int32_t slot : {movingA(cb), movingB(cb)})
       if (slot >= 0) slotParent_[static_cast<std::size_t>(slot)] = slot;
   }
-  auto root = [&](std::int32_t x) {
-    while (slotParent_[static_cast<std::size_t>(x)] != x) {
-      slotParent_[static_cast<std::size_t>(x)] =
-          slotParent_[static_cast<std::size_t>(slotParent_[static_cast<std::size_t>(x)])];
-      x = slotParent_[static_cast<std::size_t>(x)];
-    }
-    return x;
-  };
+  auto root = [&](std::int32_t x) { return unionFindRoot(slotParent_, x); };
   for (const std::int32_t i : grouped_) {
     const ConstraintBodies& cb = constraintBodies_[static_cast<std::size_t>(i)];
     if (movingA(cb) >= 0 && movingB(cb) >= 0)

@@ -1,4 +1,5 @@
 #include "physics/stack_solve.h"
+#include "physics/union_find.h"
 
 #include <algorithm>
 #include <cmath>
@@ -116,14 +117,7 @@ void StackSolver::build(std::span<const Constraint> constraints, std::span<const
   parent_.resize(static_cast<std::size_t>(n));
   for (std::int32_t s = 0; s < n; ++s)
     parent_[static_cast<std::size_t>(s)] = s;
-  auto root = [&](std::int32_t x) {
-    while (parent_[static_cast<std::size_t>(x)] != x) {
-      parent_[static_cast<std::size_t>(x)] =
-          parent_[static_cast<std::size_t>(parent_[static_cast<std::size_t>(x)])];
-      x = parent_[static_cast<std::size_t>(x)];
-    }
-    return x;
-  };
+  auto root = [&](std::int32_t x) { return unionFindRoot(parent_, x); };
   for (std::int32_t s = 0; s < n; ++s)
     for (std::int32_t e = adjStart_[static_cast<std::size_t>(s)];
          e < adjStart_[static_cast<std::size_t>(s) + 1]; ++e) {
@@ -204,8 +198,7 @@ void StackSolver::build(std::span<const Constraint> constraints, std::span<const
       r.friction = c.friction;
       rows_.push_back(r);
       allCarried = allCarried && c.carried;
-      rowKeys_.push_back((static_cast<std::int64_t>(i) << 1 | k) << 40 |
-                         (static_cast<std::int64_t>(pa + 1) << 20) | (pb + 1));
+      rowKeys_.push_back({i, k, pa, pb});
     }
   }
 

@@ -87,7 +87,12 @@ class StackSolver {
   std::vector<double> factor_;               // L, row by row over each row's envelope
   int unknowns_ = 0;
   bool factorKept_ = false;
-  std::vector<std::int64_t> rowKeys_, lastRowKeys_;
+  // What a row is, to tell whether the last factor still fits.
+  struct RowKey {
+    std::int32_t constraint, point, posA, posB;
+    bool operator==(const RowKey&) const = default;
+  };
+  std::vector<RowKey> rowKeys_, lastRowKeys_;
   // Scratch, kept to save allocations.
   std::vector<std::int32_t> level_, pos_, queue_, parent_, depth_;
   std::vector<std::int32_t> adjStart_, adj_;

@@ -58,6 +58,16 @@ struct Pile {
     for (std::size_t s = 0; s + 1 < bodies.size(); ++s)
       bodies[s].v = {0.0f, -kG * kH};
   }
+  // The solve built (piles from one contact deep) and run 30 times, as the substeps would run
+  // it: each correction takes out what the compliance let through the last. Whether it found
+  // a pile.
+  bool settle() {
+    StackSolver solver;
+    solver.build(constraints, invMass, invInertia, 1, kStiff, false);
+    for (int again = 0; again < 30; ++again)
+      solver.correct(bodies, impulses);
+    return solver.active();
+  }
   float normal(std::size_t c, int k) const { return impulses[4 * c + k]; }
   float tangent(std::size_t c, int k) const { return impulses[4 * c + 2 + k]; }
 };
@@ -147,11 +157,7 @@ TEST(StackSolve, ABoxOnTwoBoxesLoadsBothAlike) {
   }
   pile.finish();
   pile.falling();
-  StackSolver solver;
-  solver.build(pile.constraints, pile.invMass, pile.invInertia, 1, kStiff, false);
-  // As in the substeps, each correction takes out what the compliance let through the last.
-  for (int again = 0; again < 30; ++again)
-    solver.correct(pile.bodies, pile.impulses);
+  pile.settle();
   const float one = kG * kH;
   const float left = pile.normal(2, 0) + pile.normal(2, 1);
   const float right = pile.normal(3, 0) + pile.normal(3, 1);
@@ -182,10 +188,7 @@ TEST(StackSolve, ASlidingBoxIsLeftToSlideAndDoesNotSpin) {
   pile.falling();
   pile.bodies[0].v.x = 2.0f;
   pile.bodies[1].v.x = 2.0f;
-  StackSolver solver;
-  solver.build(pile.constraints, pile.invMass, pile.invInertia, 1, kStiff, false);
-  for (int again = 0; again < 30; ++again)
-    solver.correct(pile.bodies, pile.impulses);
+  pile.settle();
   const float fall = kG * kH;
   EXPECT_NEAR(pile.normal(0, 0) + pile.normal(0, 1), 2.0f * fall, 1e-4f * fall);
   EXPECT_NEAR(pile.normal(1, 0) + pile.normal(1, 1), fall, 1e-4f * fall);
@@ -244,11 +247,7 @@ TEST(StackSolve, NeighboursInARowAreLeftToThePasses) {
   pile.bodies[0].v.x = 1.0f;
   pile.bodies[1].v.x = -1.0f;
   pile.bodies[2].v.x = 1.0f;
-  StackSolver solver;
-  solver.build(pile.constraints, pile.invMass, pile.invInertia, 1, kStiff, false);
-  ASSERT_TRUE(solver.active());
-  for (int again = 0; again < 30; ++again)
-    solver.correct(pile.bodies, pile.impulses);
+  ASSERT_TRUE(pile.settle());
   EXPECT_EQ(pile.normal(2, 0), 0.0f);
   EXPECT_EQ(pile.normal(2, 1), 0.0f);
   EXPECT_NEAR(pile.bodies[0].v.x, 1.0f, 1e-6f);
@@ -268,10 +267,7 @@ TEST(StackSolve, ABodyThatCannotTurnDoesNot) {
   pile.constraints.push_back(off);
   pile.finish();
   pile.falling();
-  StackSolver solver;
-  solver.build(pile.constraints, pile.invMass, pile.invInertia, 1, kStiff, false);
-  for (int again = 0; again < 30; ++again)
-    solver.correct(pile.bodies, pile.impulses);
+  pile.settle();
   EXPECT_EQ(pile.bodies[0].w, 0.0f);
   EXPECT_EQ(pile.bodies[1].w, 0.0f);
   EXPECT_NEAR(pile.bodies[1].v.y, 0.0f, 1e-6f);

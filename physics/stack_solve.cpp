@@ -353,8 +353,8 @@ void StackSolver::correct(std::span<SolverBody> bodies, std::span<float> impulse
     for (std::int32_t k = fi; k < i; ++k)
       x[k] -= li[k - fi] * xi;
   }
-  // Each point's impulse change from the corrected velocities, projected onto its cone, and
-  // exactly that change applied.
+  // Each point's impulse change from the corrected velocities, projected onto its cone.
+  delta_.assign(static_cast<std::size_t>(unknowns_), 0.0);
   for (std::size_t ri = 0; ri < rows_.size(); ++ri) {
     const Row& r = rows_[ri];
     const Vec2 t{r.n.y, -r.n.x};
@@ -369,28 +369,63 @@ void StackSolver::correct(std::span<SolverBody> bodies, std::span<float> impulse
       un += e[0] * r.n.x + e[1] * r.n.y + e[2] * r.rnB;
       ut += e[0] * t.x + e[1] * t.y + e[2] * r.rtB;
     }
-    float& ln =
-        impulses[4 * static_cast<std::size_t>(r.constraint) + static_cast<std::size_t>(r.point)];
-    float& lt = impulses[4 * static_cast<std::size_t>(r.constraint) + 2 +
-                         static_cast<std::size_t>(r.point)];
+    const float ln = impulses[normalAt(r)], lt = impulses[tangentAt(r)];
     const float n1 = std::max(ln + static_cast<float>(-r.weightN * un), 0.0f);
     const float limit = r.friction * n1;
     const float t1 = std::clamp(lt + static_cast<float>(-r.weightT * ut), -limit, limit);
-    const float dn = n1 - ln, dt = t1 - lt;
-    ln = n1;
-    lt = t1;
-    const Vec2 impulse = dn * r.n + dt * t;
+    const double dn = static_cast<double>(n1) - ln, dt = static_cast<double>(t1) - lt;
+    vn_[ri] = dn;  // the row's step, from here on
+    vt_[ri] = dt;
+    const double px = dn * r.n.x + dt * t.x, py = dn * r.n.y + dt * t.y;
     if (r.posA >= 0) {
-      const auto s = static_cast<std::size_t>(r.slotA);
-      bodies[s].v -= invMass_[s] * impulse;
-      bodies[s].w -= invInertia_[s] * (dn * r.rnA + dt * r.rtA);
+      double* d = &delta_[3 * static_cast<std::size_t>(r.posA)];
+      d[0] -= px;
+      d[1] -= py;
+      d[2] -= dn * r.rnA + dt * r.rtA;
     }
     if (r.posB >= 0) {
-      const auto s = static_cast<std::size_t>(r.slotB);
-      bodies[s].v += invMass_[s] * impulse;
-      bodies[s].w += invInertia_[s] * (dn * r.rnB + dt * r.rtB);
+      double* d = &delta_[3 * static_cast<std::size_t>(r.posB)];
+      d[0] += px;
+      d[1] += py;
+      d[2] += dn * r.rnB + dt * r.rtB;
     }
   }
+  // Where nothing was cut back to its cone the step is the projection, the least kinetic
+  // energy the support allows. Where something was, it is not: the rest of the step still
+  // counts on what was cut, and applied whole it can add energy (every point in its cone, yet
+  // the pile faster), which the passes between corrections then fed (corrections every other
+  // substep blew a base-40 pyramid apart). So the step is taken only as far along as lowers the
+  // kinetic energy most, never past 1: a convex combination of two impulses in the cone stays
+  // in it, and no correction adds energy.
+  const std::int32_t P = unknowns_ / 3;
+  double slope = 0, curvature = 0;  // kinetic energy along the step: slope a + curvature a^2 / 2
+  for (std::int32_t p = 0; p < P; ++p) {
+    const auto s = static_cast<std::size_t>(order_[static_cast<std::size_t>(p)]);
+    const double* d = &delta_[3 * static_cast<std::size_t>(p)];
+    const SolverBody& b = bodies[s];
+    const double im = invMass_[s], ii = invInertia_[s];
+    // A change's impulse d turns into a velocity change im d: energy terms v . d and im d . d.
+    slope += b.v.x * d[0] + b.v.y * d[1] + b.w * d[2];
+    curvature += im * (d[0] * d[0] + d[1] * d[1]) + ii * d[2] * d[2];
+  }
+  const double along = curvature > 0 ? std::clamp(-slope / curvature, 0.0, 1.0) : 1.0;
+  for (std::int32_t p = 0; p < P; ++p) {
+    const auto s = static_cast<std::size_t>(order_[static_cast<std::size_t>(p)]);
+    const double* d = &delta_[3 * static_cast<std::size_t>(p)];
+    SolverBody& b = bodies[s];
+    b.v.x += static_cast<float>(along * invMass_[s] * d[0]);
+    b.v.y += static_cast<float>(along * invMass_[s] * d[1]);
+    b.w += static_cast<float>(along * invInertia_[s] * d[2]);
+  }
+  for (std::size_t ri = 0; ri < rows_.size(); ++ri) {
+    const Row& r = rows_[ri];
+    float& ln = impulses[normalAt(r)];
+    float& lt = impulses[tangentAt(r)];
+    // In double: a whole step gives back the projected impulse exactly.
+    ln = static_cast<float>(ln + along * vn_[ri]);
+    lt = static_cast<float>(lt + along * vt_[ri]);
+  }
+  lastStep_ = along;
 }
 
 }  // namespace rc

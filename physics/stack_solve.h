@@ -6,7 +6,8 @@
 // a settled pile sleeps"). After each relax pass this solve takes out what the passes left:
 // every touching point's normal and tangent velocity driven to zero at once, exactly, as a
 // linear system, then each point's impulse projected back onto its cone (normal impulse not
-// below 0, tangent within friction times normal) and exactly those changes applied.
+// below 0, tangent within friction times normal) and those changes applied, as far along as
+// lowers the kinetic energy most (never past the whole step: a correction adds no energy).
 //
 // The system is written in the bodies' velocities (three unknowns a body, coupled where bodies
 // touch) rather than in the contact impulses (two a point, coupled through every body they
@@ -64,6 +65,10 @@ class StackSolver {
   // ContactSolver::impulses (four a constraint), read and updated in place.
   void correct(std::span<SolverBody> bodies, std::span<float> impulses) const;
 
+  // How far along its step the last correction went: 1 unless some point was cut back to its
+  // cone and the whole step would not have lowered the kinetic energy most.
+  double lastStep() const { return lastStep_; }
+
   int unknowns() const { return unknowns_; }
   std::size_t factorSize() const { return factor_.size(); }
 
@@ -80,6 +85,11 @@ class StackSolver {
     float friction;
   };
   std::vector<Row> rows_;
+  // Where a row's impulses sit in ContactSolver::impulses' layout.
+  static std::size_t normalAt(const Row& r) {
+    return 4 * static_cast<std::size_t>(r.constraint) + static_cast<std::size_t>(r.point);
+  }
+  static std::size_t tangentAt(const Row& r) { return normalAt(r) + 2; }
   std::vector<float> invMass_, invInertia_;  // per solver slot
   std::vector<std::int32_t> order_;          // system position -> solver slot
   std::vector<std::int32_t> first_;          // per unknown: its row's first column in the envelope
@@ -97,7 +107,8 @@ class StackSolver {
   std::vector<std::int32_t> level_, pos_, queue_, parent_, depth_;
   std::vector<std::int32_t> adjStart_, adj_;
   mutable std::vector<double> rhs_;
-  mutable std::vector<double> vn_, vt_;
+  mutable std::vector<double> vn_, vt_, delta_;  // delta_: per unknown, the step's impulse
+  mutable double lastStep_ = 1;
 };
 
 }  // namespace rc

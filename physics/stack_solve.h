@@ -100,9 +100,11 @@ class StackSolver {
   // What a row is, to tell whether the last factor still fits.
   struct RowKey {
     std::int32_t constraint, point, posA, posB;
+    bool friction;  // a tangent row too
     bool operator==(const RowKey&) const = default;
   };
   std::vector<RowKey> rowKeys_, lastRowKeys_;
+  std::vector<std::uint8_t> touch_, lastTouch_;  // per constraint: its touching points, bit k
   // Scratch, kept to save allocations.
   std::vector<std::int32_t> level_, pos_, queue_, parent_, depth_;
   std::vector<std::int32_t> adjStart_, adj_;

@@ -312,6 +312,28 @@ TEST(StackSolve, TheFactorIsKeptOnlyWhileItFits) {
   pile.constraints[2].separation[1] = 0.01f;  // a point lifted off
   solver.build(pile.constraints, pile.invMass, pile.invInertia, 1, kStiff, true);
   EXPECT_FALSE(solver.factorKept());
+  solver.build(pile.constraints, pile.invMass, pile.invInertia, 1, kStiff, true);
+  EXPECT_TRUE(solver.factorKept());
+  // Coming back to half a millimetre apart it is not touching yet, so nothing changes...
+  pile.constraints[2].separation[1] = 0.0005f;
+  solver.build(pile.constraints, pile.invMass, pile.invInertia, 1, kStiff, true);
+  EXPECT_TRUE(solver.factorKept());
+  // ...touching, it is a row again...
+  pile.constraints[2].separation[1] = -0.0001f;
+  solver.build(pile.constraints, pile.invMass, pile.invInertia, 1, kStiff, true);
+  EXPECT_FALSE(solver.factorKept());
+  // ...and hovering half a millimetre apart again it stays one (a resting point hovers about
+  // zero: the factor is not made again for that).
+  pile.constraints[2].separation[1] = 0.0005f;
+  solver.build(pile.constraints, pile.invMass, pile.invInertia, 1, kStiff, true);
+  EXPECT_TRUE(solver.factorKept());
+  // A point that slid last step loses its friction row: another matrix.
+  pile.constraints[0].normalImpulse[0] = 0.1f;
+  pile.constraints[0].tangentImpulse[0] = 0.6f * 0.1f;
+  solver.build(pile.constraints, pile.invMass, pile.invInertia, 1, kStiff, true);
+  EXPECT_FALSE(solver.factorKept());
+  solver.build(pile.constraints, pile.invMass, pile.invInertia, 1, kStiff, true);
+  EXPECT_TRUE(solver.factorKept());
 }
 
 // A pyramid of unit boxes, base `base`, each resting on the two below it across half its bottom

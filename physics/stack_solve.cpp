@@ -41,10 +41,47 @@ double dotRun(const double* a, const double* b, std::int32_t n) {
   return (s[0] + s[1]) + tail;
 }
 
+// One body's three rows (float) dotted with the same x over n terms, in dotRun's order each: x
+// loaded once for the three.
+void dotRun3(const float* a0, const float* a1, const float* a2, const double* x, std::int32_t n,
+             double out[3]) {
+  using V = double __attribute__((vector_size(16)));
+  auto load = [](const double* p) {
+    V v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+  };
+  auto loadF = [](const float* p) {
+    return V{static_cast<double>(p[0]), static_cast<double>(p[1])};
+  };
+  const float* a[3] = {a0, a1, a2};
+  V s[3][4] = {};
+  std::int32_t k = 0;
+  for (; k + 8 <= n; k += 8) {
+    const V x0 = load(x + k), x1 = load(x + k + 2), x2 = load(x + k + 4), x3 = load(x + k + 6);
+    for (int r = 0; r < 3; ++r) {
+      s[r][0] += loadF(a[r] + k) * x0;
+      s[r][1] += loadF(a[r] + k + 2) * x1;
+      s[r][2] += loadF(a[r] + k + 4) * x2;
+      s[r][3] += loadF(a[r] + k + 6) * x3;
+    }
+  }
+  for (int r = 0; r < 3; ++r) {
+    double tail = 0;
+    for (std::int32_t j = k; j < n; ++j)
+      tail += static_cast<double>(a[r][j]) * x[j];
+    const V v = (s[r][0] + s[r][1]) + (s[r][2] + s[r][3]);
+    out[r] = (v[0] + v[1]) + tail;
+  }
+}
+
 // A carried friction impulse at this fraction of its cone or more: the point was sliding.
 constexpr float kSlidingFraction = 0.99f;
 // How far apart a point touching last step may be and still count as touching (see build).
 constexpr float kRowMargin = 0.001f;
+// Rows that may join the factor's before it is made again: one in this many of them
+// (keepFactor).
+constexpr std::size_t kJoinedRowsPer = 100;
 
 }  // namespace
 
@@ -217,10 +254,11 @@ void StackSolver::build(std::span<const Constraint> constraints, std::span<const
   }
 
   unknowns_ = 3 * static_cast<std::int32_t>(order_.size());
-  if (layoutKept && allCarried && rowKeys_ == lastRowKeys_) {
+  if (layoutKept && allCarried && order_ == factorOrder_ && keepFactor()) {
     factorKept_ = true;
     return;
   }
+  factorOrder_ = order_;
   // The envelope: an unknown's row reaches back to the first unknown of the earliest body it
   // touches.
   const auto bodies = static_cast<std::int32_t>(order_.size());
@@ -307,6 +345,41 @@ void StackSolver::build(std::span<const Constraint> constraints, std::span<const
     const double d = li[i - fi] - dotRun(li, li, i - fi);
     li[i - fi] = std::sqrt(std::max(d, 1e-300));
   }
+  // The solves read the factor in float: half the bytes (the base-40 pyramid's 197k entries fit
+  // in a core's 1 MiB L2 as float, not as double), and the triangular solves stream it twice a
+  // correction. What the rounding leaves is taken out by the next correction with the rest of
+  // what the compliance let through; the piles measured sleep and drift as with double.
+  factorF_.resize(factor_.size());
+  for (std::size_t k = 0; k < factor_.size(); ++k)
+    factorF_[k] = static_cast<float>(factor_[k]);
+}
+
+// Whether the factor's rows (lastRowKeys_) are all still there and few enough others have
+// joined them; if so the rows are cut back to the factor's. A point that has come to touch since
+// the factor was made is left to the passes until it is made again: in a pile that has stopped,
+// the last of the points that lifted off as it was let go come back one at a time, and each
+// would otherwise cost a factorisation. A row that left (lifted off, or lost its friction row)
+// cannot stay: the solve would hold it.
+bool StackSolver::keepFactor() {
+  if (rowKeys_.size() < lastRowKeys_.size() ||
+      (rowKeys_.size() - lastRowKeys_.size()) * kJoinedRowsPer > lastRowKeys_.size())
+    return false;
+  std::size_t kept = 0, q = 0;
+  for (std::size_t r = 0; r < rowKeys_.size() && q < lastRowKeys_.size(); ++r) {
+    const RowKey& now = rowKeys_[r];
+    const RowKey& then = lastRowKeys_[q];
+    if (now == then) {
+      rows_[kept++] = rows_[r];
+      ++q;
+    } else if (now.constraint > then.constraint ||
+               (now.constraint == then.constraint && now.point > then.point)) {
+      return false;  // the factor's row is gone
+    }
+  }
+  if (q < lastRowKeys_.size()) return false;
+  rows_.resize(kept);
+  rowKeys_ = lastRowKeys_;
+  return true;
 }
 
 void StackSolver::correct(std::span<SolverBody> bodies, std::span<float> impulses) const {
@@ -352,20 +425,40 @@ void StackSolver::correct(std::span<SolverBody> bodies, std::span<float> impulse
       rhs_[3 * static_cast<std::size_t>(p)] = 0, rhs_[3 * static_cast<std::size_t>(p) + 1] = 0;
     if (invInertia_[s] <= 0) rhs_[3 * static_cast<std::size_t>(p) + 2] = 0;
   }
-  // L y = b, then L^T e = y.
+  // L y = b, then L^T e = y, a body (three rows, one envelope start) at a time: each pass over
+  // the envelope loads and stores x once for the three, not once a row (the backward pass a
+  // third of the loads and stores it made row by row, in the same order of operations).
   double* x = rhs_.data();
-  for (std::int32_t i = 0; i < unknowns_; ++i) {
-    const std::int32_t fi = first_[static_cast<std::size_t>(i)];
-    const double* li = &factor_[start_[static_cast<std::size_t>(i)]];
-    x[i] = (x[i] - dotRun(li, x + fi, i - fi)) / li[i - fi];
+  const std::int32_t bodyCount = unknowns_ / 3;
+  for (std::int32_t p = 0; p < bodyCount; ++p) {
+    const auto i = static_cast<std::size_t>(3 * p);
+    const std::int32_t f = first_[i];
+    const std::int32_t n = 3 * p - f;
+    const float* l0 = &factorF_[start_[i]];
+    const float* l1 = &factorF_[start_[i + 1]];
+    const float* l2 = &factorF_[start_[i + 2]];
+    double d[3];
+    dotRun3(l0, l1, l2, x + f, n, d);
+    x[i] = (x[i] - d[0]) / l0[n];
+    x[i + 1] = (x[i + 1] - d[1] - l1[n] * x[i]) / l1[n + 1];
+    x[i + 2] = (x[i + 2] - d[2] - l2[n] * x[i] - l2[n + 1] * x[i + 1]) / l2[n + 2];
   }
-  for (std::int32_t i = unknowns_ - 1; i >= 0; --i) {
-    const std::int32_t fi = first_[static_cast<std::size_t>(i)];
-    const double* li = &factor_[start_[static_cast<std::size_t>(i)]];
-    const double xi = x[i] / li[i - fi];
-    x[i] = xi;
-    for (std::int32_t k = fi; k < i; ++k)
-      x[k] -= li[k - fi] * xi;
+  for (std::int32_t p = bodyCount - 1; p >= 0; --p) {
+    const auto i = static_cast<std::size_t>(3 * p);
+    const std::int32_t f = first_[i];
+    const std::int32_t n = 3 * p - f;
+    const float* l0 = &factorF_[start_[i]];
+    const float* l1 = &factorF_[start_[i + 1]];
+    const float* l2 = &factorF_[start_[i + 2]];
+    const double x2 = x[i + 2] / l2[n + 2];
+    const double x1 = (x[i + 1] - l2[n + 1] * x2) / l1[n + 1];
+    const double x0 = ((x[i] - l2[n] * x2) - l1[n] * x1) / l0[n];
+    x[i] = x0;
+    x[i + 1] = x1;
+    x[i + 2] = x2;
+    double* xf = x + f;
+    for (std::int32_t k = 0; k < n; ++k)
+      xf[k] = ((xf[k] - l2[k] * x2) - l1[k] * x1) - l0[k] * x0;
   }
   // Each point's impulse change from the corrected velocities, projected onto its cone.
   delta_.assign(static_cast<std::size_t>(unknowns_), 0.0);

@@ -94,7 +94,8 @@ class StackSolver {
   std::vector<std::int32_t> order_;          // system position -> solver slot
   std::vector<std::int32_t> first_;          // per unknown: its row's first column in the envelope
   std::vector<std::size_t> start_;           // per unknown: where its row begins in factor_
-  std::vector<double> factor_;               // L, row by row over each row's envelope
+  std::vector<double> factor_;  // L, row by row over each row's envelope (made in double)
+  std::vector<float> factorF_;  // the same in float, for the solves
   int unknowns_ = 0;
   bool factorKept_ = false;
   // What a row is, to tell whether the last factor still fits.
@@ -104,6 +105,8 @@ class StackSolver {
     bool operator==(const RowKey&) const = default;
   };
   std::vector<RowKey> rowKeys_, lastRowKeys_;
+  std::vector<std::int32_t> factorOrder_;  // order_ when the factor was made
+  bool keepFactor();
   std::vector<std::uint8_t> touch_, lastTouch_;  // per constraint: its touching points, bit k
   // Scratch, kept to save allocations.
   std::vector<std::int32_t> level_, pos_, queue_, parent_, depth_;

@@ -1,9 +1,15 @@
 #include "physics/stack_solve.h"
+// The four-double solves are compiled for AVX2 in their own function and everything they use is
+// inlined into it, so the compilers' warning that passing such a vector would change the ABI
+// (-Wpsabi) does not apply (as in contact_solver.cpp).
+#pragma GCC diagnostic ignored "-Wpsabi"
+#include "physics/simd.h"
 #include "physics/union_find.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <type_traits>
 
 namespace rc {
 
@@ -41,39 +47,119 @@ double dotRun(const double* a, const double* b, std::int32_t n) {
   return (s[0] + s[1]) + tail;
 }
 
-// One body's three rows (float) dotted with the same x over n terms, in dotRun's order each: x
-// loaded once for the three.
-void dotRun3(const float* a0, const float* a1, const float* a2, const double* x, std::int32_t n,
-             double out[3]) {
-  using V = double __attribute__((vector_size(16)));
-  auto load = [](const double* p) {
-    V v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-  };
-  auto loadF = [](const float* p) {
-    return V{static_cast<double>(p[0]), static_cast<double>(p[1])};
-  };
-  const float* a[3] = {a0, a1, a2};
-  V s[3][4] = {};
-  std::int32_t k = 0;
-  for (; k + 8 <= n; k += 8) {
-    const V x0 = load(x + k), x1 = load(x + k + 2), x2 = load(x + k + 4), x3 = load(x + k + 6);
+// The triangular solves on the float factor, W doubles a vector (2: SSE2, 4: AVX2). The same
+// bits at either width: the backward pass is element by element, and the forward dot products
+// keep eight running sums of two lanes each (element k in sum k mod 8 / 2's lane k mod 2),
+// which four-lane vectors hold two to a register and add up in the same order.
+struct Envelope {
+  const float* factor;
+  const std::size_t* start;
+  const std::int32_t* first;
+  std::int32_t bodies;
+};
+
+using D2 = double __attribute__((vector_size(16)));
+using D4 = double __attribute__((vector_size(32)));
+using F2 = float __attribute__((vector_size(8)));
+using F4 = float __attribute__((vector_size(16)));
+
+// Always inlined (no lambdas returning vectors): an AVX2 caller must get them in its own
+// instructions, not as calls compiled without AVX that return a vector by another convention
+// (see simd.h).
+template <class V>
+[[gnu::always_inline]] inline V loadDoubles(const double* p) {
+  V v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+template <class V, class VF>
+[[gnu::always_inline]] inline V loadFloats(const float* p) {
+  VF v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return __builtin_convertvector(v, V);
+}
+[[gnu::always_inline]] inline D2 pairs(D2 v) {
+  return v;
+}
+[[gnu::always_inline]] inline D2 pairs(D4 v) {
+  return D2{v[0], v[1]} + D2{v[2], v[3]};
+}
+
+template <int W>
+[[gnu::always_inline]] inline void solveEnvelope(const Envelope& L, double* x) {
+  using V = std::conditional_t<W == 2, D2, D4>;
+  using VF = std::conditional_t<W == 2, F2, F4>;
+  using V2 = D2;
+  constexpr int kSums = 8 / W;
+  // L y = b, a body (three rows, one envelope start) at a time: x loaded once for the three.
+  for (std::int32_t p = 0; p < L.bodies; ++p) {
+    const auto i = static_cast<std::size_t>(3 * p);
+    const std::int32_t f = L.first[i];
+    const std::int32_t n = 3 * p - f;
+    const float* l[3] = {L.factor + L.start[i], L.factor + L.start[i + 1],
+                         L.factor + L.start[i + 2]};
+    const double* xf = x + f;
+    V sum[3][kSums] = {};
+    std::int32_t k = 0;
+    for (; k + 8 <= n; k += 8)
+      for (int v = 0; v < kSums; ++v) {
+        const V xv = loadDoubles<V>(xf + k + W * v);
+        for (int r = 0; r < 3; ++r)
+          sum[r][v] += loadFloats<V, VF>(l[r] + k + W * v) * xv;
+      }
+    double d[3];
     for (int r = 0; r < 3; ++r) {
-      s[r][0] += loadF(a[r] + k) * x0;
-      s[r][1] += loadF(a[r] + k + 2) * x1;
-      s[r][2] += loadF(a[r] + k + 4) * x2;
-      s[r][3] += loadF(a[r] + k + 6) * x3;
+      double tail = 0;
+      for (std::int32_t j = k; j < n; ++j)
+        tail += static_cast<double>(l[r][j]) * xf[j];
+      V2 s;
+      if constexpr (W == 2)
+        s = (sum[r][0] + sum[r][1]) + (sum[r][2] + sum[r][3]);
+      else
+        s = pairs(sum[r][0]) + pairs(sum[r][1]);
+      d[r] = (s[0] + s[1]) + tail;
     }
+    x[i] = (x[i] - d[0]) / l[0][n];
+    x[i + 1] = (x[i + 1] - d[1] - l[1][n] * x[i]) / l[1][n + 1];
+    x[i + 2] = (x[i + 2] - d[2] - l[2][n] * x[i] - l[2][n + 1] * x[i + 1]) / l[2][n + 2];
   }
-  for (int r = 0; r < 3; ++r) {
-    double tail = 0;
-    for (std::int32_t j = k; j < n; ++j)
-      tail += static_cast<double>(a[r][j]) * x[j];
-    const V v = (s[r][0] + s[r][1]) + (s[r][2] + s[r][3]);
-    out[r] = (v[0] + v[1]) + tail;
+  // L^T e = y, a body at a time: x updated once for the three rows, in the order row by row
+  // would.
+  for (std::int32_t p = L.bodies - 1; p >= 0; --p) {
+    const auto i = static_cast<std::size_t>(3 * p);
+    const std::int32_t f = L.first[i];
+    const std::int32_t n = 3 * p - f;
+    const float* l0 = L.factor + L.start[i];
+    const float* l1 = L.factor + L.start[i + 1];
+    const float* l2 = L.factor + L.start[i + 2];
+    const double x2 = x[i + 2] / l2[n + 2];
+    const double x1 = (x[i + 1] - l2[n + 1] * x2) / l1[n + 1];
+    const double x0 = ((x[i] - l2[n] * x2) - l1[n] * x1) / l0[n];
+    x[i] = x0;
+    x[i + 1] = x1;
+    x[i + 2] = x2;
+    double* xf = x + f;
+    std::int32_t k = 0;
+    const V v0 = V{} + x0, v1 = V{} + x1, v2 = V{} + x2;
+    for (; k + W <= n; k += W) {
+      const V r = ((loadDoubles<V>(xf + k) - loadFloats<V, VF>(l2 + k) * v2) -
+                   loadFloats<V, VF>(l1 + k) * v1) -
+                  loadFloats<V, VF>(l0 + k) * v0;
+      std::memcpy(xf + k, &r, sizeof r);
+    }
+    for (; k < n; ++k)
+      xf[k] = ((xf[k] - l2[k] * x2) - l1[k] * x1) - l0[k] * x0;
   }
 }
+
+void solveEnvelope2(const Envelope& L, double* x) {
+  solveEnvelope<2>(L, x);
+}
+#if RC_HAVE_AVX2_PATHS
+[[gnu::target("avx2")]] void solveEnvelope4(const Envelope& L, double* x) {
+  solveEnvelope<4>(L, x);
+}
+#endif
 
 // A carried friction impulse at this fraction of its cone or more: the point was sliding.
 constexpr float kSlidingFraction = 0.99f;
@@ -84,6 +170,14 @@ constexpr float kRowMargin = 0.001f;
 constexpr std::size_t kJoinedRowsPer = 100;
 
 }  // namespace
+
+bool StackSolver::widestByDefault() {
+#if RC_HAVE_AVX2_PATHS
+  return simd::avx2Enabled();
+#else
+  return false;
+#endif
+}
 
 void StackSolver::build(std::span<const Constraint> constraints, std::span<const float> invMass,
                         std::span<const float> invInertia, int minDepth, float compliance,
@@ -425,41 +519,18 @@ void StackSolver::correct(std::span<SolverBody> bodies, std::span<float> impulse
       rhs_[3 * static_cast<std::size_t>(p)] = 0, rhs_[3 * static_cast<std::size_t>(p) + 1] = 0;
     if (invInertia_[s] <= 0) rhs_[3 * static_cast<std::size_t>(p) + 2] = 0;
   }
-  // L y = b, then L^T e = y, a body (three rows, one envelope start) at a time: each pass over
-  // the envelope loads and stores x once for the three, not once a row (the backward pass a
-  // third of the loads and stores it made row by row, in the same order of operations).
+  // L y = b, then L^T e = y.
   double* x = rhs_.data();
-  const std::int32_t bodyCount = unknowns_ / 3;
-  for (std::int32_t p = 0; p < bodyCount; ++p) {
-    const auto i = static_cast<std::size_t>(3 * p);
-    const std::int32_t f = first_[i];
-    const std::int32_t n = 3 * p - f;
-    const float* l0 = &factorF_[start_[i]];
-    const float* l1 = &factorF_[start_[i + 1]];
-    const float* l2 = &factorF_[start_[i + 2]];
-    double d[3];
-    dotRun3(l0, l1, l2, x + f, n, d);
-    x[i] = (x[i] - d[0]) / l0[n];
-    x[i + 1] = (x[i + 1] - d[1] - l1[n] * x[i]) / l1[n + 1];
-    x[i + 2] = (x[i + 2] - d[2] - l2[n] * x[i] - l2[n + 1] * x[i + 1]) / l2[n + 2];
+  const Envelope envelope{factorF_.data(), start_.data(), first_.data(), unknowns_ / 3};
+#if RC_HAVE_AVX2_PATHS
+  if (wide_) {
+    solveEnvelope4(envelope, x);
+  } else {
+    solveEnvelope2(envelope, x);
   }
-  for (std::int32_t p = bodyCount - 1; p >= 0; --p) {
-    const auto i = static_cast<std::size_t>(3 * p);
-    const std::int32_t f = first_[i];
-    const std::int32_t n = 3 * p - f;
-    const float* l0 = &factorF_[start_[i]];
-    const float* l1 = &factorF_[start_[i + 1]];
-    const float* l2 = &factorF_[start_[i + 2]];
-    const double x2 = x[i + 2] / l2[n + 2];
-    const double x1 = (x[i + 1] - l2[n + 1] * x2) / l1[n + 1];
-    const double x0 = ((x[i] - l2[n] * x2) - l1[n] * x1) / l0[n];
-    x[i] = x0;
-    x[i + 1] = x1;
-    x[i + 2] = x2;
-    double* xf = x + f;
-    for (std::int32_t k = 0; k < n; ++k)
-      xf[k] = ((xf[k] - l2[k] * x2) - l1[k] * x1) - l0[k] * x0;
-  }
+#else
+  solveEnvelope2(envelope, x);
+#endif
   // Each point's impulse change from the corrected velocities, projected onto its cone.
   delta_.assign(static_cast<std::size_t>(unknowns_), 0.0);
   for (std::size_t ri = 0; ri < rows_.size(); ++ri) {

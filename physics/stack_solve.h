@@ -54,6 +54,10 @@ class StackSolver {
     bool carried = false;
   };
 
+  // wide: the triangular solves in four-double vectors (AVX2, where the processor has it) or
+  // two; the same bits either way.
+  explicit StackSolver(bool wide = widestByDefault()) : wide_(wide) {}
+
   // Finds the piles and factors their system. invMass / invInertia per solver slot. The last
   // factor is kept where it still fits: layoutKept (the same constraints as last step), the
   // same rows, every one of them carried.
@@ -70,6 +74,7 @@ class StackSolver {
   double lastStep() const { return lastStep_; }
 
   int unknowns() const { return unknowns_; }
+  static bool widestByDefault();
   std::size_t factorSize() const { return factor_.size(); }
 
  private:
@@ -84,6 +89,7 @@ class StackSolver {
     double weightN, weightT;  // 1 / compliance of each row
     float friction;
   };
+  bool wide_;
   std::vector<Row> rows_;
   // Where a row's impulses sit in ContactSolver::impulses' layout.
   static std::size_t normalAt(const Row& r) {

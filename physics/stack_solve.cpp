@@ -20,33 +20,6 @@ struct Jac {
   double x, y, w;
 };
 
-// a . b over n terms in eight running sums, in a fixed order (the same bits on every build and
-// vector width). One running sum is a chain of dependent additions: that chain, not the
-// arithmetic, bounded the triangular solves and the factorisation.
-double dotRun(const double* a, const double* b, std::int32_t n) {
-  // Two-double vectors: the baseline x86-64 (SSE2) holds them in registers, where four-double
-  // ones were split and spilled to the stack.
-  using V = double __attribute__((vector_size(16)));
-  V s0{}, s1{}, s2{}, s3{};
-  std::int32_t k = 0;
-  auto load = [](const double* p) {
-    V v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-  };
-  for (; k + 8 <= n; k += 8) {
-    s0 += load(a + k) * load(b + k);
-    s1 += load(a + k + 2) * load(b + k + 2);
-    s2 += load(a + k + 4) * load(b + k + 4);
-    s3 += load(a + k + 6) * load(b + k + 6);
-  }
-  double tail = 0;
-  for (; k < n; ++k)
-    tail += a[k] * b[k];
-  const V s = (s0 + s1) + (s2 + s3);
-  return (s[0] + s[1]) + tail;
-}
-
 // The triangular solves on the float factor, W doubles a vector (2: SSE2, 4: AVX2). The same
 // bits at either width: the backward pass is element by element, and the forward dot products
 // keep eight running sums of two lanes each (element k in sum k mod 8 / 2's lane k mod 2),
@@ -151,6 +124,86 @@ template <int W>
       xf[k] = ((xf[k] - l2[k] * x2) - l1[k] * x1) - l0[k] * x0;
   }
 }
+
+// R rows a[r] dotted with the same b over n terms, in the forward solve's order (eight two-lane
+// running sums, then a tail): b loaded once for the R rows. One running sum is a chain of
+// dependent additions: that chain, not the arithmetic, bounded the factorisation.
+template <int W, int R>
+[[gnu::always_inline]] inline void dotRows(const double* const (&a)[R], const double* b,
+                                           std::int32_t n, double (&out)[R]) {
+  using V = std::conditional_t<W == 2, D2, D4>;
+  constexpr int kSums = 8 / W;
+  V sum[R][kSums] = {};
+  std::int32_t k = 0;
+  for (; k + 8 <= n; k += 8)
+    for (int v = 0; v < kSums; ++v) {
+      const V bv = loadDoubles<V>(b + k + W * v);
+      for (int r = 0; r < R; ++r)
+        sum[r][v] += loadDoubles<V>(a[r] + k + W * v) * bv;
+    }
+  for (int r = 0; r < R; ++r) {
+    double tail = 0;
+    for (std::int32_t j = k; j < n; ++j)
+      tail += a[r][j] * b[j];
+    D2 s;
+    if constexpr (W == 2)
+      s = (sum[r][0] + sum[r][1]) + (sum[r][2] + sum[r][3]);
+    else
+      s = pairs(sum[r][0]) + pairs(sum[r][1]);
+    out[r] = (s[0] + s[1]) + tail;
+  }
+}
+
+template <int W>
+[[gnu::always_inline]] inline double dot(const double* a, const double* b, std::int32_t n) {
+  const double* rows[1] = {a};
+  double out[1];
+  dotRows<W, 1>(rows, b, n, out);
+  return out[0];
+}
+
+// Cholesky in place, row by row within the envelope (fill stays inside it; row i holds columns
+// first[i] to i), a body's three rows at a time: each earlier row j is loaded once for the
+// three. K is positive definite (M's diagonal alone is); the floor only keeps rounding from
+// taking a square root of a negative.
+template <int W>
+[[gnu::always_inline]] inline void factorEnvelope(double* factor, const std::size_t* start,
+                                                  const std::int32_t* first, std::int32_t bodies) {
+  for (std::int32_t p = 0; p < bodies; ++p) {
+    const auto i = static_cast<std::size_t>(3 * p);
+    const std::int32_t f = first[i];
+    const std::int32_t n = 3 * p - f;
+    double* l[3] = {factor + start[i], factor + start[i + 1], factor + start[i + 2]};
+    for (std::int32_t j = f; j < 3 * p; ++j) {
+      const std::int32_t fj = first[static_cast<std::size_t>(j)];
+      const double* lj = factor + start[static_cast<std::size_t>(j)];
+      const std::int32_t k0 = std::max(f, fj);
+      const double* a[3] = {l[0] + (k0 - f), l[1] + (k0 - f), l[2] + (k0 - f)};
+      double d[3];
+      dotRows<W, 3>(a, lj + (k0 - fj), j - k0, d);
+      for (int r = 0; r < 3; ++r)
+        l[r][j - f] = (l[r][j - f] - d[r]) / lj[j - fj];
+    }
+    // The body's own 3 x 3 block.
+    l[0][n] = std::sqrt(std::max(l[0][n] - dot<W>(l[0], l[0], n), 1e-300));
+    l[1][n] = (l[1][n] - dot<W>(l[1], l[0], n)) / l[0][n];
+    l[1][n + 1] = std::sqrt(std::max(l[1][n + 1] - dot<W>(l[1], l[1], n + 1), 1e-300));
+    l[2][n] = (l[2][n] - dot<W>(l[2], l[0], n)) / l[0][n];
+    l[2][n + 1] = (l[2][n + 1] - dot<W>(l[2], l[1], n + 1)) / l[1][n + 1];
+    l[2][n + 2] = std::sqrt(std::max(l[2][n + 2] - dot<W>(l[2], l[2], n + 2), 1e-300));
+  }
+}
+
+void factorEnvelope2(double* factor, const std::size_t* start, const std::int32_t* first,
+                     std::int32_t bodies) {
+  factorEnvelope<2>(factor, start, first, bodies);
+}
+#if RC_HAVE_AVX2_PATHS
+[[gnu::target("avx2")]] void factorEnvelope4(double* factor, const std::size_t* start,
+                                             const std::int32_t* first, std::int32_t bodies) {
+  factorEnvelope<4>(factor, start, first, bodies);
+}
+#endif
 
 void solveEnvelope2(const Envelope& L, double* x) {
   solveEnvelope<2>(L, x);
@@ -423,22 +476,15 @@ void StackSolver::build(std::span<const Constraint> constraints, std::span<const
     }
   }
 
-  // Cholesky, row by row within the envelope (fill stays inside it). Row i holds columns
-  // first_[i] to i.
-  for (std::int32_t i = 0; i < unknowns_; ++i) {
-    const std::int32_t fi = first_[static_cast<std::size_t>(i)];
-    double* li = &factor_[start_[static_cast<std::size_t>(i)]];
-    for (std::int32_t j = fi; j < i; ++j) {
-      const std::int32_t fj = first_[static_cast<std::size_t>(j)];
-      const double* lj = &factor_[start_[static_cast<std::size_t>(j)]];
-      const std::int32_t k0 = std::max(fi, fj);
-      li[j - fi] = (li[j - fi] - dotRun(li + (k0 - fi), lj + (k0 - fj), j - k0)) / lj[j - fj];
-    }
-    // K is positive definite (M's diagonal alone is); the floor only keeps rounding from
-    // taking a square root of a negative.
-    const double d = li[i - fi] - dotRun(li, li, i - fi);
-    li[i - fi] = std::sqrt(std::max(d, 1e-300));
+#if RC_HAVE_AVX2_PATHS
+  if (wide_) {
+    factorEnvelope4(factor_.data(), start_.data(), first_.data(), bodies);
+  } else {
+    factorEnvelope2(factor_.data(), start_.data(), first_.data(), bodies);
   }
+#else
+  factorEnvelope2(factor_.data(), start_.data(), first_.data(), bodies);
+#endif
   // The solves read the factor in float: half the bytes (the base-40 pyramid's 197k entries fit
   // in a core's 1 MiB L2 as float, not as double), and the triangular solves stream it twice a
   // correction. What the rounding leaves is taken out by the next correction with the rest of

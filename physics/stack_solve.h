@@ -15,7 +15,8 @@
 // own effective mass inverse) which makes the statically indeterminate support (a box on two
 // boxes) well posed. It is the same correction as the impulse form (Woodbury's identity:
 // lambda = -(J M^-1 J^T + C)^-1 J v), on a matrix a third the size whose envelope in order of
-// distance from the ground is one row of the pile wide. Factored by Cholesky in double.
+// distance from the ground is one row of the pile wide. Factored by Cholesky in double, solved
+// on a float copy of the factor (half the bytes; the next correction takes out the rounding).
 //
 // Only piles get it: bodies joined by contacts to a static, sleeping or kinematic body, in a
 // group whose deepest body is at least minDepth contacts away from it (a crowd on the floor is
@@ -23,8 +24,8 @@
 //
 // Not yet in the step: in WorldState::solve after each relax pass it holds a base-40 pyramid
 // still from its first steps (asleep at step 30, the top 0.3 mm down, against 217 and 52 mm),
-// but costs several times the step it corrects (tests/bench/README.md, "Session 27"); the
-// wiring is tests/bench/prototypes/stack_solve_wiring.patch.
+// but an awake base-20 pyramid runs 2.9x the instructions it does without (tests/bench/README.md,
+// "Session 27" and "Session 28"); the wiring is tests/bench/prototypes/stack_solve_wiring.patch.
 #pragma once
 
 #include <cstdint>

@@ -58,40 +58,67 @@ template <class V, class VF>
   return D2{v[0], v[1]} + D2{v[2], v[3]};
 }
 
+template <class V>
+[[gnu::always_inline]] inline V loadRow(const double* p) {
+  return loadDoubles<V>(p);
+}
+template <class V>
+[[gnu::always_inline]] inline V loadRow(const float* p) {
+  if constexpr (sizeof(V) == 16)
+    return loadFloats<V, F2>(p);
+  else
+    return loadFloats<V, F4>(p);
+}
+
+// R rows a[r] (float or double) dotted with the same b over n terms in eight two-lane running
+// sums, then a tail: b loaded once for the R rows. One running sum is a chain of
+// dependent additions: that chain, not the arithmetic, bounded the factorisation.
+template <int W, int R, class T>
+[[gnu::always_inline]] inline void dotRows(const T* const (&a)[R], const double* b, std::int32_t n,
+                                           double (&out)[R]) {
+  using V = std::conditional_t<W == 2, D2, D4>;
+  constexpr int kSums = 8 / W;
+  V sum[R][kSums] = {};
+  std::int32_t k = 0;
+  for (; k + 8 <= n; k += 8)
+    for (int v = 0; v < kSums; ++v) {
+      const V bv = loadDoubles<V>(b + k + W * v);
+      for (int r = 0; r < R; ++r)
+        sum[r][v] += loadRow<V>(a[r] + k + W * v) * bv;
+    }
+  for (int r = 0; r < R; ++r) {
+    double tail = 0;
+    for (std::int32_t j = k; j < n; ++j)
+      tail += static_cast<double>(a[r][j]) * b[j];
+    D2 s;
+    if constexpr (W == 2)
+      s = (sum[r][0] + sum[r][1]) + (sum[r][2] + sum[r][3]);
+    else
+      s = pairs(sum[r][0]) + pairs(sum[r][1]);
+    out[r] = (s[0] + s[1]) + tail;
+  }
+}
+
+template <int W>
+[[gnu::always_inline]] inline double dot(const double* a, const double* b, std::int32_t n) {
+  const double* const rows[1] = {a};
+  double out[1];
+  dotRows<W, 1, double>(rows, b, n, out);
+  return out[0];
+}
+
 template <int W>
 [[gnu::always_inline]] inline void solveEnvelope(const Envelope& L, double* x) {
   using V = std::conditional_t<W == 2, D2, D4>;
-  using VF = std::conditional_t<W == 2, F2, F4>;
-  using V2 = D2;
-  constexpr int kSums = 8 / W;
   // L y = b, a body (three rows, one envelope start) at a time: x loaded once for the three.
   for (std::int32_t p = 0; p < L.bodies; ++p) {
     const auto i = static_cast<std::size_t>(3 * p);
     const std::int32_t f = L.first[i];
     const std::int32_t n = 3 * p - f;
-    const float* l[3] = {L.factor + L.start[i], L.factor + L.start[i + 1],
-                         L.factor + L.start[i + 2]};
-    const double* xf = x + f;
-    V sum[3][kSums] = {};
-    std::int32_t k = 0;
-    for (; k + 8 <= n; k += 8)
-      for (int v = 0; v < kSums; ++v) {
-        const V xv = loadDoubles<V>(xf + k + W * v);
-        for (int r = 0; r < 3; ++r)
-          sum[r][v] += loadFloats<V, VF>(l[r] + k + W * v) * xv;
-      }
+    const float* const l[3] = {L.factor + L.start[i], L.factor + L.start[i + 1],
+                               L.factor + L.start[i + 2]};
     double d[3];
-    for (int r = 0; r < 3; ++r) {
-      double tail = 0;
-      for (std::int32_t j = k; j < n; ++j)
-        tail += static_cast<double>(l[r][j]) * xf[j];
-      V2 s;
-      if constexpr (W == 2)
-        s = (sum[r][0] + sum[r][1]) + (sum[r][2] + sum[r][3]);
-      else
-        s = pairs(sum[r][0]) + pairs(sum[r][1]);
-      d[r] = (s[0] + s[1]) + tail;
-    }
+    dotRows<W, 3, float>(l, x + f, n, d);
     x[i] = (x[i] - d[0]) / l[0][n];
     x[i + 1] = (x[i + 1] - d[1] - l[1][n] * x[i]) / l[1][n + 1];
     x[i + 2] = (x[i + 2] - d[2] - l[2][n] * x[i] - l[2][n + 1] * x[i + 1]) / l[2][n + 2];
@@ -115,51 +142,13 @@ template <int W>
     std::int32_t k = 0;
     const V v0 = V{} + x0, v1 = V{} + x1, v2 = V{} + x2;
     for (; k + W <= n; k += W) {
-      const V r = ((loadDoubles<V>(xf + k) - loadFloats<V, VF>(l2 + k) * v2) -
-                   loadFloats<V, VF>(l1 + k) * v1) -
-                  loadFloats<V, VF>(l0 + k) * v0;
+      const V r = ((loadDoubles<V>(xf + k) - loadRow<V>(l2 + k) * v2) - loadRow<V>(l1 + k) * v1) -
+                  loadRow<V>(l0 + k) * v0;
       std::memcpy(xf + k, &r, sizeof r);
     }
     for (; k < n; ++k)
       xf[k] = ((xf[k] - l2[k] * x2) - l1[k] * x1) - l0[k] * x0;
   }
-}
-
-// R rows a[r] dotted with the same b over n terms, in the forward solve's order (eight two-lane
-// running sums, then a tail): b loaded once for the R rows. One running sum is a chain of
-// dependent additions: that chain, not the arithmetic, bounded the factorisation.
-template <int W, int R>
-[[gnu::always_inline]] inline void dotRows(const double* const (&a)[R], const double* b,
-                                           std::int32_t n, double (&out)[R]) {
-  using V = std::conditional_t<W == 2, D2, D4>;
-  constexpr int kSums = 8 / W;
-  V sum[R][kSums] = {};
-  std::int32_t k = 0;
-  for (; k + 8 <= n; k += 8)
-    for (int v = 0; v < kSums; ++v) {
-      const V bv = loadDoubles<V>(b + k + W * v);
-      for (int r = 0; r < R; ++r)
-        sum[r][v] += loadDoubles<V>(a[r] + k + W * v) * bv;
-    }
-  for (int r = 0; r < R; ++r) {
-    double tail = 0;
-    for (std::int32_t j = k; j < n; ++j)
-      tail += a[r][j] * b[j];
-    D2 s;
-    if constexpr (W == 2)
-      s = (sum[r][0] + sum[r][1]) + (sum[r][2] + sum[r][3]);
-    else
-      s = pairs(sum[r][0]) + pairs(sum[r][1]);
-    out[r] = (s[0] + s[1]) + tail;
-  }
-}
-
-template <int W>
-[[gnu::always_inline]] inline double dot(const double* a, const double* b, std::int32_t n) {
-  const double* rows[1] = {a};
-  double out[1];
-  dotRows<W, 1>(rows, b, n, out);
-  return out[0];
 }
 
 // Cholesky in place, row by row within the envelope (fill stays inside it; row i holds columns
@@ -178,9 +167,9 @@ template <int W>
       const std::int32_t fj = first[static_cast<std::size_t>(j)];
       const double* lj = factor + start[static_cast<std::size_t>(j)];
       const std::int32_t k0 = std::max(f, fj);
-      const double* a[3] = {l[0] + (k0 - f), l[1] + (k0 - f), l[2] + (k0 - f)};
+      const double* const a[3] = {l[0] + (k0 - f), l[1] + (k0 - f), l[2] + (k0 - f)};
       double d[3];
-      dotRows<W, 3>(a, lj + (k0 - fj), j - k0, d);
+      dotRows<W, 3, double>(a, lj + (k0 - fj), j - k0, d);
       for (int r = 0; r < 3; ++r)
         l[r][j - f] = (l[r][j - f] - d[r]) / lj[j - fj];
     }

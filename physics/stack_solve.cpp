@@ -183,25 +183,51 @@ template <int W>
   }
 }
 
-void factorEnvelope2(double* factor, const std::size_t* start, const std::int32_t* first,
-                     std::int32_t bodies) {
-  factorEnvelope<2>(factor, start, first, bodies);
-}
 #if RC_HAVE_AVX2_PATHS
 [[gnu::target("avx2")]] void factorEnvelope4(double* factor, const std::size_t* start,
                                              const std::int32_t* first, std::int32_t bodies) {
   factorEnvelope<4>(factor, start, first, bodies);
 }
-#endif
-
-void solveEnvelope2(const Envelope& L, double* x) {
-  solveEnvelope<2>(L, x);
-}
-#if RC_HAVE_AVX2_PATHS
 [[gnu::target("avx2")]] void solveEnvelope4(const Envelope& L, double* x) {
   solveEnvelope<4>(L, x);
 }
 #endif
+
+// Each at the width asked for (wide: four doubles a vector, where there are AVX2 paths).
+void factorEnvelope(bool wide, double* factor, const std::size_t* start, const std::int32_t* first,
+                    std::int32_t bodies) {
+#if RC_HAVE_AVX2_PATHS
+  if (wide) return factorEnvelope4(factor, start, first, bodies);
+#endif
+  (void)wide;
+  factorEnvelope<2>(factor, start, first, bodies);
+}
+void solveEnvelope(bool wide, const Envelope& L, double* x) {
+#if RC_HAVE_AVX2_PATHS
+  if (wide) return solveEnvelope4(L, x);
+#endif
+  (void)wide;
+  solveEnvelope<2>(L, x);
+}
+
+// A row's forces fn (normal) and ft (tangent) on the system's unknowns: J^T (fn, ft), -J on A's
+// side. out: per unknown body, three a body.
+template <class Row>
+void addRowForces(const Row& r, double fn, double ft, double* out) {
+  const Vec2 t{r.n.y, -r.n.x};
+  if (r.posA >= 0) {
+    double* x = &out[3 * static_cast<std::size_t>(r.posA)];
+    x[0] -= fn * r.n.x + ft * t.x;
+    x[1] -= fn * r.n.y + ft * t.y;
+    x[2] -= fn * r.rnA + ft * r.rtA;
+  }
+  if (r.posB >= 0) {
+    double* x = &out[3 * static_cast<std::size_t>(r.posB)];
+    x[0] += fn * r.n.x + ft * t.x;
+    x[1] += fn * r.n.y + ft * t.y;
+    x[2] += fn * r.rnB + ft * r.rtB;
+  }
+}
 
 // A carried friction impulse at this fraction of its cone or more: the point was sliding.
 constexpr float kSlidingFraction = 0.99f;
@@ -231,8 +257,6 @@ void StackSolver::build(std::span<const Constraint> constraints, std::span<const
   rows_.clear();
   order_.clear();
   unknowns_ = 0;
-  invMass_.assign(invMass.begin(), invMass.end());
-  invInertia_.assign(invInertia.begin(), invInertia.end());
   const auto n = static_cast<std::int32_t>(invMass.size());
   const auto C = static_cast<std::int32_t>(constraints.size());
   auto moving = [](std::int32_t slot, bool moves) { return moves ? slot : -1; };
@@ -327,6 +351,14 @@ void StackSolver::build(std::span<const Constraint> constraints, std::span<const
     lastRowKeys_.clear();
     return;
   }
+  // The pile's inverse masses by position in the system (not every awake slot's: a world with
+  // no pile copies none).
+  invMass_.resize(order_.size());
+  invInertia_.resize(order_.size());
+  for (std::size_t p = 0; p < order_.size(); ++p) {
+    invMass_[p] = invMass[static_cast<std::size_t>(order_[p])];
+    invInertia_[p] = invInertia[static_cast<std::size_t>(order_[p])];
+  }
   bool allCarried = true;
 
   // The rows: every touching point of a constraint on a pile's body.
@@ -399,7 +431,6 @@ void StackSolver::build(std::span<const Constraint> constraints, std::span<const
   // The envelope: an unknown's row reaches back to the first unknown of the earliest body it
   // touches.
   const auto bodies = static_cast<std::int32_t>(order_.size());
-  unknowns_ = 3 * bodies;
   std::vector<std::int32_t>& firstBody = depth_;  // reused: per position
   firstBody.resize(static_cast<std::size_t>(bodies));
   for (std::int32_t p = 0; p < bodies; ++p)
@@ -428,8 +459,8 @@ void StackSolver::build(std::span<const Constraint> constraints, std::span<const
   // K = M + J^T W J. A direction a body cannot move in (infinite mass or inertia: a
   // fixed-rotation body's turn) keeps a unit diagonal and no coupling, so its change is 0.
   auto inverse = [&](std::int32_t p, int d) {
-    const auto s = static_cast<std::size_t>(order_[static_cast<std::size_t>(p)]);
-    return d < 2 ? static_cast<double>(invMass[s]) : static_cast<double>(invInertia[s]);
+    const auto q = static_cast<std::size_t>(p);
+    return d < 2 ? static_cast<double>(invMass_[q]) : static_cast<double>(invInertia_[q]);
   };
   for (std::int32_t p = 0; p < bodies; ++p)
     for (int d = 0; d < 3; ++d) {
@@ -466,15 +497,7 @@ void StackSolver::build(std::span<const Constraint> constraints, std::span<const
     }
   }
 
-#if RC_HAVE_AVX2_PATHS
-  if (wide_) {
-    factorEnvelope4(factor_.data(), start_.data(), first_.data(), bodies);
-  } else {
-    factorEnvelope2(factor_.data(), start_.data(), first_.data(), bodies);
-  }
-#else
-  factorEnvelope2(factor_.data(), start_.data(), first_.data(), bodies);
-#endif
+  factorEnvelope(wide_, factor_.data(), start_.data(), first_.data(), bodies);
   // The solves read the factor in float: half the bytes (the base-40 pyramid's 197k entries fit
   // in a core's 1 MiB L2 as float, not as double), and the triangular solves stream it twice a
   // correction. What the rounding leaves is taken out by the next correction with the rest of
@@ -534,39 +557,16 @@ void StackSolver::correct(std::span<SolverBody> bodies, std::span<float> impulse
     }
     vn_[ri] = vn;
     vt_[ri] = vt;
-    const double fn = -r.weightN * vn, ft = -r.weightT * vt;
-    if (r.posA >= 0) {
-      double* x = &rhs_[3 * static_cast<std::size_t>(r.posA)];
-      x[0] -= fn * r.n.x + ft * t.x;
-      x[1] -= fn * r.n.y + ft * t.y;
-      x[2] -= fn * r.rnA + ft * r.rtA;
-    }
-    if (r.posB >= 0) {
-      double* x = &rhs_[3 * static_cast<std::size_t>(r.posB)];
-      x[0] += fn * r.n.x + ft * t.x;
-      x[1] += fn * r.n.y + ft * t.y;
-      x[2] += fn * r.rnB + ft * r.rtB;
-    }
+    addRowForces(r, -r.weightN * vn, -r.weightT * vt, rhs_.data());
   }
   // Directions a body cannot move in have no right-hand side (their unit diagonal gives 0).
-  for (std::int32_t p = 0; p < unknowns_ / 3; ++p) {
-    const auto s = static_cast<std::size_t>(order_[static_cast<std::size_t>(p)]);
-    if (invMass_[s] <= 0)
-      rhs_[3 * static_cast<std::size_t>(p)] = 0, rhs_[3 * static_cast<std::size_t>(p) + 1] = 0;
-    if (invInertia_[s] <= 0) rhs_[3 * static_cast<std::size_t>(p) + 2] = 0;
+  for (std::size_t p = 0; p < invMass_.size(); ++p) {
+    if (invMass_[p] <= 0) rhs_[3 * p] = 0, rhs_[3 * p + 1] = 0;
+    if (invInertia_[p] <= 0) rhs_[3 * p + 2] = 0;
   }
   // L y = b, then L^T e = y.
   double* x = rhs_.data();
-  const Envelope envelope{factorF_.data(), start_.data(), first_.data(), unknowns_ / 3};
-#if RC_HAVE_AVX2_PATHS
-  if (wide_) {
-    solveEnvelope4(envelope, x);
-  } else {
-    solveEnvelope2(envelope, x);
-  }
-#else
-  solveEnvelope2(envelope, x);
-#endif
+  solveEnvelope(wide_, Envelope{factorF_.data(), start_.data(), first_.data(), unknowns_ / 3}, x);
   // Each point's impulse change from the corrected velocities, projected onto its cone.
   delta_.assign(static_cast<std::size_t>(unknowns_), 0.0);
   for (std::size_t ri = 0; ri < rows_.size(); ++ri) {
@@ -590,19 +590,7 @@ void StackSolver::correct(std::span<SolverBody> bodies, std::span<float> impulse
     const double dn = static_cast<double>(n1) - ln, dt = static_cast<double>(t1) - lt;
     vn_[ri] = dn;  // the row's step, from here on
     vt_[ri] = dt;
-    const double px = dn * r.n.x + dt * t.x, py = dn * r.n.y + dt * t.y;
-    if (r.posA >= 0) {
-      double* d = &delta_[3 * static_cast<std::size_t>(r.posA)];
-      d[0] -= px;
-      d[1] -= py;
-      d[2] -= dn * r.rnA + dt * r.rtA;
-    }
-    if (r.posB >= 0) {
-      double* d = &delta_[3 * static_cast<std::size_t>(r.posB)];
-      d[0] += px;
-      d[1] += py;
-      d[2] += dn * r.rnB + dt * r.rtB;
-    }
+    addRowForces(r, dn, dt, delta_.data());
   }
   // Where nothing was cut back to its cone the step is the projection, the least kinetic
   // energy the support allows. Where something was, it is not: the rest of the step still
@@ -614,22 +602,22 @@ void StackSolver::correct(std::span<SolverBody> bodies, std::span<float> impulse
   const std::int32_t P = unknowns_ / 3;
   double slope = 0, curvature = 0;  // kinetic energy along the step: slope a + curvature a^2 / 2
   for (std::int32_t p = 0; p < P; ++p) {
-    const auto s = static_cast<std::size_t>(order_[static_cast<std::size_t>(p)]);
-    const double* d = &delta_[3 * static_cast<std::size_t>(p)];
-    const SolverBody& b = bodies[s];
-    const double im = invMass_[s], ii = invInertia_[s];
+    const auto q = static_cast<std::size_t>(p);
+    const double* d = &delta_[3 * q];
+    const SolverBody& b = bodies[static_cast<std::size_t>(order_[q])];
+    const double im = invMass_[q], ii = invInertia_[q];
     // A change's impulse d turns into a velocity change im d: energy terms v . d and im d . d.
     slope += b.v.x * d[0] + b.v.y * d[1] + b.w * d[2];
     curvature += im * (d[0] * d[0] + d[1] * d[1]) + ii * d[2] * d[2];
   }
   const double along = curvature > 0 ? std::clamp(-slope / curvature, 0.0, 1.0) : 1.0;
   for (std::int32_t p = 0; p < P; ++p) {
-    const auto s = static_cast<std::size_t>(order_[static_cast<std::size_t>(p)]);
-    const double* d = &delta_[3 * static_cast<std::size_t>(p)];
-    SolverBody& b = bodies[s];
-    b.v.x += static_cast<float>(along * invMass_[s] * d[0]);
-    b.v.y += static_cast<float>(along * invMass_[s] * d[1]);
-    b.w += static_cast<float>(along * invInertia_[s] * d[2]);
+    const auto q = static_cast<std::size_t>(p);
+    const double* d = &delta_[3 * q];
+    SolverBody& b = bodies[static_cast<std::size_t>(order_[q])];
+    b.v.x += static_cast<float>(along * invMass_[q] * d[0]);
+    b.v.y += static_cast<float>(along * invMass_[q] * d[1]);
+    b.w += static_cast<float>(along * invInertia_[q] * d[2]);
   }
   for (std::size_t ri = 0; ri < rows_.size(); ++ri) {
     const Row& r = rows_[ri];

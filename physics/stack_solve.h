@@ -97,7 +97,7 @@ class StackSolver {
     return 4 * static_cast<std::size_t>(r.constraint) + static_cast<std::size_t>(r.point);
   }
   static std::size_t tangentAt(const Row& r) { return normalAt(r) + 2; }
-  std::vector<float> invMass_, invInertia_;  // per solver slot
+  std::vector<float> invMass_, invInertia_;  // per position in the system (order_)
   std::vector<std::int32_t> order_;          // system position -> solver slot
   std::vector<std::int32_t> first_;          // per unknown: its row's first column in the envelope
   std::vector<std::size_t> start_;           // per unknown: where its row begins in factor_

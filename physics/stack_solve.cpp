@@ -237,6 +237,9 @@ constexpr float kRowMargin = 0.001f;
 // (keepFactor). One in 100 was too few for a base-20 pyramid (8 of its 783 rows joined in a
 // step, a factorisation); one in 20 holds base 10, 20 and 40 as still as every row would.
 constexpr std::size_t kJoinedRowsPer = 20;
+// Once a correction is wanted, it is until the pile is under this fraction of the bounds
+// (correctionWanted).
+constexpr float kStopFraction = 0.1f;
 
 }  // namespace
 
@@ -251,7 +254,6 @@ bool StackSolver::widestByDefault() {
 void StackSolver::build(std::span<const Constraint> constraints, std::span<const float> invMass,
                         std::span<const float> invInertia, int minDepth, float compliance,
                         bool layoutKept) {
-  std::swap(rowKeys_, lastRowKeys_);
   rowKeys_.clear();
   factorKept_ = false;
   rows_.clear();
@@ -298,7 +300,7 @@ void StackSolver::build(std::span<const Constraint> constraints, std::span<const
     }
   }
   if (queue_.empty()) {
-    lastRowKeys_.clear();
+    stale_ = true;
     return;
   }
   for (std::int32_t s = 0; s < n; ++s)
@@ -348,7 +350,7 @@ void StackSolver::build(std::span<const Constraint> constraints, std::span<const
     order_.push_back(s);
   }
   if (order_.empty()) {
-    lastRowKeys_.clear();
+    stale_ = true;
     return;
   }
   // The pile's inverse masses by position in the system (not every awake slot's: a world with
@@ -423,10 +425,18 @@ void StackSolver::build(std::span<const Constraint> constraints, std::span<const
   }
 
   unknowns_ = 3 * static_cast<std::int32_t>(order_.size());
-  if (layoutKept && allCarried && order_ == factorOrder_ && keepFactor()) {
+  if (!stale_ && layoutKept && allCarried && order_ == factorOrder_ && keepFactor()) {
     factorKept_ = true;
     return;
   }
+  // Made at the first correction that is wanted (correctionWanted): a still pile asks for one
+  // in a hundred substeps or fewer, and its rows change (a manifold made again) more often.
+  stale_ = true;
+}
+
+void StackSolver::factor() {
+  stale_ = false;
+  factorKeys_ = rowKeys_;
   factorOrder_ = order_;
   // The envelope: an unknown's row reaches back to the first unknown of the earliest body it
   // touches.
@@ -507,36 +517,62 @@ void StackSolver::build(std::span<const Constraint> constraints, std::span<const
     factorF_[k] = static_cast<float>(factor_[k]);
 }
 
-// Whether the factor's rows (lastRowKeys_) are all still there and few enough others have
+// Whether the factor's rows (factorKeys_) are all still there and few enough others have
 // joined them; if so the rows are cut back to the factor's. A point that has come to touch since
 // the factor was made is left to the passes until it is made again: in a pile that has stopped,
 // the last of the points that lifted off as it was let go come back one at a time, and each
 // would otherwise cost a factorisation. A row that left (lifted off, or lost its friction row)
 // cannot stay: the solve would hold it.
 bool StackSolver::keepFactor() {
-  if (rowKeys_.size() < lastRowKeys_.size() ||
-      (rowKeys_.size() - lastRowKeys_.size()) * kJoinedRowsPer > lastRowKeys_.size())
+  if (rowKeys_.size() < factorKeys_.size() ||
+      (rowKeys_.size() - factorKeys_.size()) * kJoinedRowsPer > factorKeys_.size())
     return false;
-  std::size_t kept = 0, q = 0;
-  for (std::size_t r = 0; r < rowKeys_.size() && q < lastRowKeys_.size(); ++r) {
+  // Whether every factor row is still there first, then the cut: a failed check must leave the
+  // rows whole, for the factor made from them (cut as it went, a check that failed late had
+  // overwritten a joining row with a copy of the next one).
+  std::size_t q = 0;
+  for (std::size_t r = 0; r < rowKeys_.size() && q < factorKeys_.size(); ++r) {
     const RowKey& now = rowKeys_[r];
-    const RowKey& then = lastRowKeys_[q];
+    const RowKey& then = factorKeys_[q];
     if (now == then) {
-      rows_[kept++] = rows_[r];
       ++q;
     } else if (now.constraint > then.constraint ||
                (now.constraint == then.constraint && now.point > then.point)) {
       return false;  // the factor's row is gone
     }
   }
-  if (q < lastRowKeys_.size()) return false;
+  if (q < factorKeys_.size()) return false;
+  std::size_t kept = 0;
+  q = 0;
+  for (std::size_t r = 0; r < rowKeys_.size() && q < factorKeys_.size(); ++r)
+    if (rowKeys_[r] == factorKeys_[q]) rows_[kept++] = rows_[r], ++q;
   rows_.resize(kept);
-  rowKeys_ = lastRowKeys_;
+  rowKeys_ = factorKeys_;
   return true;
 }
 
-void StackSolver::correct(std::span<SolverBody> bodies, std::span<float> impulses) const {
+bool StackSolver::correctionWanted(std::span<const SolverBody> bodies, float speed, float turn) {
+  if (unknowns_ == 0) return false;
+  // Started above the bounds, wanted until every body is under a tenth of them: corrections
+  // that stop as soon as the pile is under the bounds leave it breathing just below them (a
+  // base-40 pyramid at 0.02 m/s for hundreds of steps), where taking it down to a tenth stops
+  // it (under 0.003 m/s after 9 corrections in 4000 substeps).
+  const float f = wanted_ ? kStopFraction : 1.0f;
+  const float v2 = f * f * speed * speed, w2 = f * f * turn * turn;
+  wanted_ = false;
+  for (const std::int32_t slot : order_) {
+    const SolverBody& b = bodies[static_cast<std::size_t>(slot)];
+    if (dot(b.v, b.v) > v2 || b.w * b.w > w2) {
+      wanted_ = true;
+      break;
+    }
+  }
+  return wanted_;
+}
+
+void StackSolver::correct(std::span<SolverBody> bodies, std::span<float> impulses) {
   if (unknowns_ == 0) return;
+  if (stale_) factor();
   rhs_.assign(static_cast<std::size_t>(unknowns_), 0.0);
   vn_.resize(rows_.size());
   vt_.resize(rows_.size());

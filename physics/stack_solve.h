@@ -59,16 +59,22 @@ class StackSolver {
   // two; the same bits either way.
   explicit StackSolver(bool wide = widestByDefault()) : wide_(wide) {}
 
-  // Finds the piles and factors their system. invMass / invInertia per solver slot. The last
-  // factor is kept where it still fits: layoutKept (the same constraints as last step), the
-  // same rows, every one of them carried.
+  // Finds the piles and their rows. invMass / invInertia per solver slot. The last factor is
+  // kept where it still fits: layoutKept (the same constraints as last step), the same rows,
+  // every one of them carried; otherwise the next correction makes it.
   void build(std::span<const Constraint> constraints, std::span<const float> invMass,
              std::span<const float> invInertia, int minDepth, float compliance, bool layoutKept);
   bool factorKept() const { return factorKept_; }
   bool active() const { return unknowns_ > 0; }
+  // Whether a correction is wanted after this relax pass: some body of the piles moves faster
+  // than speed (m/s) or turns faster than turn (rad/s); once wanted, until every one is under a
+  // tenth of both. The passes alone keep a still pile still (its warm start is the
+  // correction's answer): corrected only when it moves, a pile held still costs the passes.
+  bool correctionWanted(std::span<const SolverBody> bodies, float speed, float turn);
   // After a relax pass: the correction, applied to the bodies; impulses as
-  // ContactSolver::impulses (four a constraint), read and updated in place.
-  void correct(std::span<SolverBody> bodies, std::span<float> impulses) const;
+  // ContactSolver::impulses (four a constraint), read and updated in place. Makes the factor
+  // first where build could not keep it.
+  void correct(std::span<SolverBody> bodies, std::span<float> impulses);
 
   // How far along its step the last correction went: 1 unless some point was cut back to its
   // cone and the whole step would not have lowered the kinetic energy most.
@@ -111,16 +117,19 @@ class StackSolver {
     bool friction;  // a tangent row too
     bool operator==(const RowKey&) const = default;
   };
-  std::vector<RowKey> rowKeys_, lastRowKeys_;
-  std::vector<std::int32_t> factorOrder_;  // order_ when the factor was made
+  std::vector<RowKey> rowKeys_, factorKeys_;  // factorKeys_: rowKeys_ when it was made
+  std::vector<std::int32_t> factorOrder_;     // order_ when it was made
+  bool stale_ = true;                         // no factor of these rows yet: correct makes it
+  bool wanted_ = false;                       // the last correctionWanted's answer
   bool keepFactor();
+  void factor();
   std::vector<std::uint8_t> touch_, lastTouch_;  // per constraint: its touching points, bit k
   // Scratch, kept to save allocations.
   std::vector<std::int32_t> level_, pos_, queue_, parent_, depth_;
   std::vector<std::int32_t> adjStart_, adj_;
-  mutable std::vector<double> rhs_;
-  mutable std::vector<double> vn_, vt_, delta_;  // delta_: per unknown, the step's impulse
-  mutable double lastStep_ = 1;
+  std::vector<double> rhs_;
+  std::vector<double> vn_, vt_, delta_;  // delta_: per unknown, the step's impulse
+  double lastStep_ = 1;
 };
 
 }  // namespace rc

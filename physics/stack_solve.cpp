@@ -259,9 +259,7 @@ void StackSolver::build(std::span<const Constraint> constraints, std::span<const
   rows_.clear();
   order_.clear();
   unknowns_ = 0;
-  const auto n = static_cast<std::int32_t>(invMass.size());
   const auto C = static_cast<std::int32_t>(constraints.size());
-  auto moving = [](std::int32_t slot, bool moves) { return moves ? slot : -1; };
   // Touching points: overlapping, or within kRowMargin apart and touching last step (the same
   // constraints: layoutKept). A resting point hovers about zero; without the margin a few in a
   // still base-40 pyramid went in and out each step and the factor was made again in 13 of its
@@ -280,14 +278,39 @@ void StackSolver::build(std::span<const Constraint> constraints, std::span<const
     return touch_[static_cast<std::size_t>(&c - constraints.data())] != 0;
   };
 
+  // The bodies of touching constraints by local number (slot_ / local_), so that what follows
+  // costs the contacts, not the awake bodies: a crowd of thousands with a few dozen contacts
+  // pays for the contacts alone.
+  for (const std::int32_t slot : slot_)
+    local_[static_cast<std::size_t>(slot)] = -1;
+  slot_.clear();
+  if (local_.size() < invMass.size()) local_.resize(invMass.size(), -1);
+  auto localOf = [&](std::int32_t slot) {
+    std::int32_t& l = local_[static_cast<std::size_t>(slot)];
+    if (l < 0) {
+      l = static_cast<std::int32_t>(slot_.size());
+      slot_.push_back(slot);
+    }
+    return l;
+  };
+  for (const Constraint& c : constraints) {
+    if (!touching(c)) continue;
+    if (c.movesA) localOf(c.slotA);
+    if (c.movesB) localOf(c.slotB);
+  }
+  const auto m = static_cast<std::int32_t>(slot_.size());
+  // The local number of a side that moves and touches (-1: neither).
+  auto local = [&](std::int32_t slot, bool moves) {
+    return moves ? local_[static_cast<std::size_t>(slot)] : -1;
+  };
   // Adjacency of the moving bodies over touching constraints (compressed rows), and the
   // sources: bodies resting on something contacts do not move.
-  level_.assign(static_cast<std::size_t>(n), -1);
-  adjStart_.assign(static_cast<std::size_t>(n) + 1, 0);
+  level_.assign(static_cast<std::size_t>(m), -1);
+  adjStart_.assign(static_cast<std::size_t>(m) + 1, 0);
   queue_.clear();
   for (const Constraint& c : constraints) {
     if (!touching(c)) continue;
-    const std::int32_t a = moving(c.slotA, c.movesA), b = moving(c.slotB, c.movesB);
+    const std::int32_t a = local(c.slotA, c.movesA), b = local(c.slotB, c.movesB);
     if (a >= 0 && b >= 0) {
       ++adjStart_[static_cast<std::size_t>(a) + 1];
       ++adjStart_[static_cast<std::size_t>(b) + 1];
@@ -303,13 +326,13 @@ void StackSolver::build(std::span<const Constraint> constraints, std::span<const
     stale_ = true;
     return;
   }
-  for (std::int32_t s = 0; s < n; ++s)
+  for (std::int32_t s = 0; s < m; ++s)
     adjStart_[static_cast<std::size_t>(s) + 1] += adjStart_[static_cast<std::size_t>(s)];
-  adj_.resize(static_cast<std::size_t>(adjStart_[static_cast<std::size_t>(n)]));
+  adj_.resize(static_cast<std::size_t>(adjStart_[static_cast<std::size_t>(m)]));
   pos_.assign(adjStart_.begin(), adjStart_.end() - 1);  // fill cursors
   for (const Constraint& c : constraints) {
     if (!touching(c)) continue;
-    const std::int32_t a = moving(c.slotA, c.movesA), b = moving(c.slotB, c.movesB);
+    const std::int32_t a = local(c.slotA, c.movesA), b = local(c.slotB, c.movesB);
     if (a < 0 || b < 0) continue;
     adj_[static_cast<std::size_t>(pos_[static_cast<std::size_t>(a)]++)] = b;
     adj_[static_cast<std::size_t>(pos_[static_cast<std::size_t>(b)]++)] = a;
@@ -328,26 +351,26 @@ void StackSolver::build(std::span<const Constraint> constraints, std::span<const
     }
   }
   // Each group of touching bodies (union-find) and its deepest level.
-  parent_.resize(static_cast<std::size_t>(n));
-  for (std::int32_t s = 0; s < n; ++s)
+  parent_.resize(static_cast<std::size_t>(m));
+  for (std::int32_t s = 0; s < m; ++s)
     parent_[static_cast<std::size_t>(s)] = s;
   auto root = [&](std::int32_t x) { return unionFindRoot(parent_, x); };
-  for (std::int32_t s = 0; s < n; ++s)
+  for (std::int32_t s = 0; s < m; ++s)
     for (std::int32_t e = adjStart_[static_cast<std::size_t>(s)];
          e < adjStart_[static_cast<std::size_t>(s) + 1]; ++e) {
       const std::int32_t ra = root(s), rb = root(adj_[static_cast<std::size_t>(e)]);
       if (ra != rb) parent_[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
     }
-  depth_.assign(static_cast<std::size_t>(n), -1);
+  depth_.assign(static_cast<std::size_t>(m), -1);
   for (const std::int32_t s : queue_) {
     std::int32_t& d = depth_[static_cast<std::size_t>(root(s))];
     d = std::max(d, level_[static_cast<std::size_t>(s)]);
   }
-  pos_.assign(static_cast<std::size_t>(n), -1);
+  pos_.assign(static_cast<std::size_t>(m), -1);
   for (const std::int32_t s : queue_) {
     if (depth_[static_cast<std::size_t>(root(s))] < minDepth) continue;
     pos_[static_cast<std::size_t>(s)] = static_cast<std::int32_t>(order_.size());
-    order_.push_back(s);
+    order_.push_back(slot_[static_cast<std::size_t>(s)]);
   }
   if (order_.empty()) {
     stale_ = true;
@@ -366,7 +389,7 @@ void StackSolver::build(std::span<const Constraint> constraints, std::span<const
   // The rows: every touching point of a constraint on a pile's body.
   for (std::int32_t i = 0; i < C; ++i) {
     const Constraint& c = constraints[static_cast<std::size_t>(i)];
-    const std::int32_t a = moving(c.slotA, c.movesA), b = moving(c.slotB, c.movesB);
+    const std::int32_t a = local(c.slotA, c.movesA), b = local(c.slotB, c.movesB);
     const std::int32_t pa = a >= 0 ? pos_[static_cast<std::size_t>(a)] : -1;
     const std::int32_t pb = b >= 0 ? pos_[static_cast<std::size_t>(b)] : -1;
     if (pa < 0 && pb < 0) continue;
@@ -395,14 +418,14 @@ void StackSolver::build(std::span<const Constraint> constraints, std::span<const
       r.rtB = cross(c.rB[k], t);
       double kn = 0, kt = 0;
       if (pa >= 0) {
-        const double im = invMass[static_cast<std::size_t>(a)];
-        const double ii = invInertia[static_cast<std::size_t>(a)];
+        const double im = invMass_[static_cast<std::size_t>(pa)];
+        const double ii = invInertia_[static_cast<std::size_t>(pa)];
         kn += im + ii * r.rnA * r.rnA;
         kt += im + ii * r.rtA * r.rtA;
       }
       if (pb >= 0) {
-        const double im = invMass[static_cast<std::size_t>(b)];
-        const double ii = invInertia[static_cast<std::size_t>(b)];
+        const double im = invMass_[static_cast<std::size_t>(pb)];
+        const double ii = invInertia_[static_cast<std::size_t>(pb)];
         kn += im + ii * r.rnB * r.rnB;
         kt += im + ii * r.rtB * r.rtB;
       }

@@ -125,6 +125,9 @@ class StackSolver {
   void factor();
   std::vector<std::uint8_t> touch_, lastTouch_;  // per constraint: its touching points, bit k
   // Scratch, kept to save allocations.
+  // Per slot: its local number while building (-1 otherwise); per local number: its slot.
+  std::vector<std::int32_t> local_, slot_;
+  // Per local number (a body of a touching constraint) while building.
   std::vector<std::int32_t> level_, pos_, queue_, parent_, depth_;
   std::vector<std::int32_t> adjStart_, adj_;
   std::vector<double> rhs_;

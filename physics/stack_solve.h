@@ -22,10 +22,11 @@
 // group whose deepest body is at least minDepth contacts away from it (a crowd on the floor is
 // one or two deep and pays only the breadth-first pass).
 //
-// Not yet in the step: in WorldState::solve after each relax pass it holds a base-40 pyramid
-// still from its first steps (asleep at step 30, the top 0.3 mm down, against 217 and 52 mm),
-// but an awake base-20 pyramid runs 2.9x the instructions it does without (tests/bench/README.md,
-// "Session 27" and "Session 28"); the wiring is tests/bench/prototypes/stack_solve_wiring.patch.
+// Not yet in the step: wired after each relax pass and wanted only while the pile moves
+// (correctionWanted), it holds a base-40 pyramid still from its first steps (asleep at step 32,
+// the top 0.8 mm down, against 217 and 52 mm) with 9 corrections in 4000 substeps with sleeping
+// off, and the awake pyramids cost 3-4% more instructions than without (tests/bench/README.md,
+// "Session 27" to "Session 29"); the wiring is tests/bench/prototypes/stack_solve_wiring.patch.
 #pragma once
 
 #include <cstdint>

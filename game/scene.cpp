@@ -203,7 +203,7 @@ void parseSettings(const json& j, SceneDesc& scene, const std::string& file) {
   onlyKnown(j,
             {"gravity", "integrator", "substeps", "dt", "restitutionThreshold", "hitEventThreshold",
              "contactHertz", "contactDampingRatio", "maxPushoutSpeed", "contactRecycleDistance",
-             "continuous", "sleep", "bounds"},
+             "stackSolveDepth", "continuous", "sleep", "bounds"},
             at, "");
   rc::WorldDef& w = scene.world;
   w.gravity = vec2(j, "gravity", w.gravity, at, "");
@@ -228,6 +228,11 @@ void parseSettings(const json& j, SceneDesc& scene, const std::string& file) {
   w.contactDampingRatio = number(j, "contactDampingRatio", w.contactDampingRatio, at, "");
   w.maxPushoutSpeed = number(j, "maxPushoutSpeed", w.maxPushoutSpeed, at, "");
   w.contactRecycleDistance = number(j, "contactRecycleDistance", w.contactRecycleDistance, at, "");
+  if (const json* v = find(j, "stackSolveDepth")) {
+    if (!v->is_number_integer() || v->get<long long>() < 0 || v->get<long long>() > 1000000)
+      at.fail("stackSolveDepth", "must be an integer from 0 to 1000000, got " + describe(*v));
+    w.stackSolveDepth = static_cast<int>(v->get<long long>());
+  }
   w.continuous = boolean(j, "continuous", w.continuous, at, "");
   w.enableSleep = boolean(j, "sleep", w.enableSleep, at, "");
   if (const json* b = find(j, "bounds")) {

@@ -319,6 +319,7 @@ void WorldState::narrowphase(float dt) {
     for (int j = 0; j < oldCount; ++j)
       oldIds[j] = c.manifold.points[j].id;
     const float oldNormal[2] = {c.normalImpulse[0], c.normalImpulse[1]};
+    const std::uint8_t oldRows = c.stackRows;
     const float oldTangent[2] = {c.tangentImpulse[0], c.tangentImpulse[1]};
     // Constructed in place: the manifold function's result goes straight into the contact.
     // Assigned, it was built in a temporary and copied with wide loads of the narrow stores just
@@ -358,12 +359,14 @@ void WorldState::narrowphase(float dt) {
     // Warm start: a point keeps last step's impulses when the same features touch. (Each
     // point's pair written once: zeroed first, the two were two calls to memset, a variable
     // length to the compiler, a seventh of this loop.)
+    c.stackRows = 0;
     for (int k = 0; k < c.manifold.pointCount; ++k) {
       float normal = 0.0f, tangent = 0.0f;
       for (int j = 0; j < oldCount; ++j)
         if (oldIds[j] == c.manifold.points[k].id) {
           normal = oldNormal[j];
           tangent = oldTangent[j];
+          c.stackRows |= static_cast<std::uint8_t>(((oldRows >> j) & 1) << k);
         }
       c.normalImpulse[k] = normal;
       c.tangentImpulse[k] = tangent;

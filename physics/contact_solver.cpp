@@ -754,6 +754,21 @@ void ContactSolver::impulses(std::span<float> out) const {
   }
 }
 
+void ContactSolver::setImpulses(std::span<const float> in) {
+  Data& d = *data_;
+  for (std::size_t i = 0; i < d.constraintLane.size(); ++i) {
+    const float* o = &in[4 * i];
+    atLane(d, i, [&](auto& b, int l) {
+      b.p[0].normalImpulse[l] = o[0];
+      b.p[0].tangentImpulse[l] = o[2];
+      if (b.points == 2) {
+        b.p[1].normalImpulse[l] = o[1];
+        b.p[1].tangentImpulse[l] = o[3];
+      }
+    });
+  }
+}
+
 void ContactSolver::computeMasses() {
   Data& d = *data_;
 #if RC_HAVE_AVX2_PATHS

@@ -133,6 +133,9 @@ class ContactSolver {
   // One pass for all (the warm start's store), where solved() per point was a call and a lane
   // lookup each.
   void impulses(std::span<float> out) const;
+  // The other way: every constraint's impulses set from the same layout (a correction made
+  // outside the passes: the stack solve's).
+  void setImpulses(std::span<const float> in);
   // The whole point, derived fields included (restitution needs its lever arms and mass).
   ConstraintPoint point(std::size_t i, int point) const;
 

@@ -20,7 +20,7 @@ namespace rc {
 namespace {
 
 constexpr std::uint32_t kMagic = 0x53574352;  // "RCWS"
-constexpr std::uint32_t kFormat = 2;
+constexpr std::uint32_t kFormat = 3;
 
 // The definition's fields that decide the simulation, by name (the solver's width does not:
 // either width gives the same bits).
@@ -36,6 +36,7 @@ void defFields(const WorldDef& d, Visit&& visit) {
   visit("contactDampingRatio", d.contactDampingRatio);
   visit("maxPushoutSpeed", d.maxPushoutSpeed);
   visit("contactRecycleDistance", d.contactRecycleDistance);
+  visit("stackSolveDepth", static_cast<float>(d.stackSolveDepth));
   visit("continuous", d.continuous ? 1.0f : 0.0f);
   visit("enableSleep", d.enableSleep ? 1.0f : 0.0f);
   visit("timeToSleep", d.timeToSleep);
@@ -238,6 +239,14 @@ void ioEvents(A& a, C& contacts, S& sensors) {
 template <class A, class W>
 void ioState(A& a, W& s) {
   a(s.time_);
+  {
+    bool wanted = s.stackSolver_.wanted();  // the stack solve's bounds for the next pass
+    a(wanted);
+    if constexpr (A::reading) s.stackSolver_.setWanted(wanted);
+  }
+  a(s.pileLayout_);
+  a(s.pileLayoutCount_);
+  a(s.pileLayoutValid_);
   a(s.bodyCount_);
   a(s.shapeCount_);
   a(s.awakeCount_);
@@ -272,7 +281,7 @@ void ioState(A& a, W& s) {
     a(r.userData);
   });
   indices(a, s.freeShapes_);
-  list(a, s.contacts_, 67, [&](auto& c) {
+  list(a, s.contacts_, 68, [&](auto& c) {
     a(c.shapeA);
     a(c.shapeB);
     a(c.manifold.normal);
@@ -293,6 +302,9 @@ void ioState(A& a, W& s) {
     a(c.madeQB);
     a(c.recyclable);
     a(c.recycled);
+    a(c.stackRows);
+    if constexpr (A::reading)
+      if (c.stackRows > 3) a.fail("a contact's stack rows are " + std::to_string(c.stackRows));
     for (int k = 0; k < 2; ++k) {
       a(c.normalImpulse[k]);
       a(c.tangentImpulse[k]);

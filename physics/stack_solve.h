@@ -22,11 +22,10 @@
 // group whose deepest body is at least minDepth contacts away from it (a crowd on the floor is
 // one or two deep and pays only the breadth-first pass).
 //
-// Not yet in the step: wired after each relax pass and wanted only while the pile moves
-// (correctionWanted), it holds a base-40 pyramid still from its first steps (asleep at step 32,
-// the top 0.8 mm down, against 217 and 52 mm) with 9 corrections in 4000 substeps with sleeping
-// off, and the awake pyramids cost 3-4% more instructions than without (tests/bench/README.md,
-// "Session 27" to "Session 29"); the wiring is tests/bench/prototypes/stack_solve_wiring.patch.
+// In the step after each relax pass while a pile moves (WorldDef::stackSolveDepth, physics/
+// README.md "Piles"): a base-40 pyramid is still from its first steps (asleep at step 32, the top
+// 0.8 mm down, against 217 and 52 mm without), with 9 corrections in 4000 substeps with sleeping
+// off (tests/bench/README.md, "Session 29").
 #pragma once
 
 #include <cstdint>
@@ -51,30 +50,39 @@ class StackSolver {
     Vec2 rA[2]{}, rB[2]{};
     float separation[2]{};
     float normalImpulse[2]{}, tangentImpulse[2]{};  // carried from the last step
-    // Its manifold carried from the last step (recycled: the pair has barely moved since it
-    // was made), so its rows have barely changed either.
-    bool carried = false;
+    std::uint8_t touching = 0;                      // its rows: bit k, see touchingPoints
   };
+
+  // Which points of a constraint are rows (bit k): overlapping, or within 1 mm apart and a row
+  // last step (was: the contact keeps the bits, so that they are part of the world's state).
+  // A resting point hovers about zero; without the margin a base-40 pyramid slept at step 36-38
+  // with 1-2 mm instead of 32 with 0.5-0.8 mm, and a fixed margin with no memory was worse.
+  static std::uint8_t touchingPoints(const float* separation, int pointCount, std::uint8_t was);
 
   // wide: the triangular solves in four-double vectors (AVX2, where the processor has it) or
   // two; the same bits either way.
   explicit StackSolver(bool wide = widestByDefault()) : wide_(wide) {}
 
-  // Finds the piles and their rows. invMass / invInertia per solver slot. The last factor is
-  // kept where it still fits: layoutKept (the same constraints as last step), the same rows,
-  // every one of them carried; otherwise the next correction makes it.
+  // Finds the piles, once a step after the constraints are prepared: a function of these
+  // constraints alone (no history but their touching bits), so that a world restored from a
+  // snapshot corrects as the one it was taken from. invMass / invInertia per solver slot. The
+  // spans are read again by the first correction after it (the rows and the factor are made
+  // only where one is wanted): they must stay as they are until the next build.
   void build(std::span<const Constraint> constraints, std::span<const float> invMass,
-             std::span<const float> invInertia, int minDepth, float compliance, bool layoutKept);
-  bool factorKept() const { return factorKept_; }
+             std::span<const float> invInertia, int minDepth, float compliance);
   bool active() const { return unknowns_ > 0; }
   // Whether a correction is wanted after this relax pass: some body of the piles moves faster
   // than speed (m/s) or turns faster than turn (rad/s); once wanted, until every one is under a
-  // tenth of both. The passes alone keep a still pile still (its warm start is the
-  // correction's answer): corrected only when it moves, a pile held still costs the passes.
+  // tenth of both. Not while some body is over 25 times the bounds: that pile is moving, not
+  // settling, and the passes take it. The passes alone keep a still pile still (its warm start is
+  // the correction's answer): corrected only when it moves, a pile held still costs the passes.
   bool correctionWanted(std::span<const SolverBody> bodies, float speed, float turn);
+  // The last answer, which decides the next one's bounds: part of the world's state.
+  bool wanted() const { return wanted_; }
+  void setWanted(bool wanted) { wanted_ = wanted; }
   // After a relax pass: the correction, applied to the bodies; impulses as
-  // ContactSolver::impulses (four a constraint), read and updated in place. Makes the factor
-  // first where build could not keep it.
+  // ContactSolver::impulses (four a constraint), read and updated in place. The first after a
+  // build makes the rows and the factor (every correction of a step shares them).
   void correct(std::span<SolverBody> bodies, std::span<float> impulses);
 
   // How far along its step the last correction went: 1 unless some point was cut back to its
@@ -111,21 +119,25 @@ class StackSolver {
   std::vector<double> factor_;  // L, row by row over each row's envelope (made in double)
   std::vector<float> factorF_;  // the same in float, for the solves
   int unknowns_ = 0;
-  bool factorKept_ = false;
-  // What a row is, to tell whether the last factor still fits.
-  struct RowKey {
-    std::int32_t constraint, point, posA, posB;
-    bool friction;  // a tangent row too
-    bool operator==(const RowKey&) const = default;
-  };
-  std::vector<RowKey> rowKeys_, factorKeys_;  // factorKeys_: rowKeys_ when it was made
-  std::vector<std::int32_t> factorOrder_;     // order_ when it was made
-  bool stale_ = true;                         // no factor of these rows yet: correct makes it
-  bool wanted_ = false;                       // the last correctionWanted's answer
-  bool keepFactor();
+  // What build was given, for the rows.
+  std::span<const Constraint> constraints_;
+  std::span<const float> invMassBySlot_, invInertiaBySlot_;
+  float compliance_ = 0;
+  bool rowsMade_ = false;
+  bool stale_ = true;    // no factor of these rows yet
+  bool wanted_ = false;  // the last correctionWanted's answer
+  void findPiles(int minDepth);
+  void makeRows();
   void factor();
-  std::vector<std::uint8_t> touch_, lastTouch_;  // per constraint: its touching points, bit k
-  // Scratch, kept to save allocations.
+  float deepest_ = 0;  // the piles' deepest overlap this step (<= 0)
+  // A touching constraint's moving slots and rows: what the piles are found from.
+  struct Link {
+    std::int32_t slotA, slotB;
+    std::uint8_t touching;
+    bool operator==(const Link&) const = default;
+  };
+  std::vector<Link> links_, lastLinks_;
+  int lastMinDepth_ = -1;
   // Per slot: its local number while building (-1 otherwise); per local number: its slot.
   std::vector<std::int32_t> local_, slot_;
   // Per local number (a body of a touching constraint) while building.

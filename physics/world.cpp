@@ -78,6 +78,9 @@ World::World(const WorldDef& def) {
   requireNonNegative("world", "maxPushoutSpeed", def.maxPushoutSpeed);
   requireNonNegative("world", "contactRecycleDistance", def.contactRecycleDistance);
   requireNonNegative("world", "quarantineSpeed", def.quarantineSpeed);
+  if (def.stackSolveDepth < 0 || def.stackSolveDepth > 1000000)
+    failDefinition("world", "stackSolveDepth",
+                   "is " + std::to_string(def.stackSolveDepth) + " (must be 0 to 1000000)");
   if (def.maxSolverLanes != 4 && def.maxSolverLanes != 8)
     failDefinition("world", "maxSolverLanes",
                    "is " + std::to_string(def.maxSolverLanes) + " (must be 4 or 8)");

@@ -94,6 +94,12 @@ struct WorldDef {
   // manifold, its points carried by the bodies and its separations updated, instead of
   // colliding the shapes again: a resting pile's narrowphase costs next to nothing. 0: off.
   float contactRecycleDistance = 0.001f;  // see physics/README.md for why 1 mm
+  // Piles: bodies resting through at least this many contacts on a static, sleeping or
+  // kinematic body get their contacts solved exactly after each relax pass while any of them
+  // moves faster than 0.4 of the sleep tolerances (until all are under a tenth of that): a tall
+  // stack is still from its first steps instead of breathing for hundreds (physics/stack_solve.h,
+  // physics/README.md "Piles"). 0: off.
+  int stackSolveDepth = 3;
   // Continuous collision: contact points are kept while shapes are within what their bodies
   // can close in the step (speculative contacts), so fast bodies stop at surfaces instead of
   // passing through thin walls. Off: only within kSpeculativeDistance (shows the tunnelling).
@@ -220,6 +226,8 @@ struct Profile {
   // The last narrowphase: touching contacts whose manifold was recycled (contactRecycleDistance)
   // and those made again.
   int recycled = 0, made = 0;
+  // The last step's piles (stackSolveDepth): their bodies, and the substeps that corrected them.
+  int pileBodies = 0, pileCorrections = 0;
 };
 
 class WorldState;

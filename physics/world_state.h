@@ -23,6 +23,7 @@
 #include "physics/integrate.h"
 #include "physics/manifold.h"
 #include "physics/shapes.h"
+#include "physics/stack_solve.h"
 #include "physics/toi.h"
 #include "physics/trig.h"
 #include "physics/world.h"
@@ -108,6 +109,9 @@ class WorldState {
     Rot madeQA, madeQB;
     float madeSeparation[2] = {0, 0};
     bool recyclable = false, recycled = false;
+    // The stack solve's rows among its points last step (bit k; StackSolver::touchingPoints),
+    // following the points by id when the manifold is made again.
+    std::uint8_t stackRows = 0;
   };
   // A sensor shape and a shape whose fat AABB overlaps it.
   struct SensorPair {
@@ -230,6 +234,8 @@ class WorldState {
   bool bounceTogether(ContactConstraint& cc, const Bounce (&roles)[2], Vec2& vA, float& wA,
                       Vec2& vB, float& wB);
   void prepareBounceGroups();
+  void correctPiles();
+  void pileConstraint(std::size_t i, const ContactConstraint& cc, Contact& c);
   void measureContactWork();
   void limitBounceEnergy();
   void accelerations(std::span<const double> q, std::span<const float> v, double t,
@@ -368,6 +374,17 @@ class WorldState {
   std::vector<std::int32_t> slotParent_, rootGroup_;  // per awake slot, while grouping
   std::vector<std::uint8_t> slotDegree_;
   ContactSolver contactSolver_;
+  // The direct solve of piles (WorldDef::stackSolveDepth): its constraints in prepare's order,
+  // the impulses it exchanges with the contact solver, and the slots' inverse masses (written for
+  // the slots of constraints only: it reads no others).
+  StackSolver stackSolver_;
+  std::vector<StackSolver::Constraint> stackConstraints_;
+  std::vector<float> stackImpulses_, slotInvMass_, slotInvInertia_;
+  // A hash of last step's constraints (their slots and point counts) and the awake count:
+  // whether a point's row may stay one apart (pileConstraint). Part of the state.
+  std::uint64_t pileLayout_ = 0;
+  std::uint32_t pileLayoutCount_ = 0;
+  bool pileLayoutValid_ = false, pileLayoutKept_ = false;
   // Per slot during the solve: the free-motion velocities of the substep (as velocityRows lays
   // them out), and the solver's bodies (velocity, and how far each has moved and turned since
   // the constraints were prepared), plus the null body at the end; with an integrator other

@@ -48,6 +48,10 @@ TEST(Scene, BadInputNamesFileBodyAndField) {
        "verlet, rk4; got \"leapfrog\""},
       {R"({"settings": {"substeps": 0}, "bodies": []})",
        "s.json: settings, substeps: must be an integer from 1 to 64, got 0"},
+      {R"({"settings": {"stackSolveDepth": -1}, "bodies": []})",
+       "s.json: settings, stackSolveDepth: must be an integer from 0 to 1000000, got -1"},
+      {R"({"settings": {"stackSolveDepth": 2.5}, "bodies": []})",
+       "s.json: settings, stackSolveDepth: must be an integer from 0 to 1000000, got 2.5"},
       {R"({"settings": {"dt": 1e999}, "bodies": []})",
        "s.json: not valid JSON: number overflow parsing '1e999'"},
       {R"({"bodies": [{"name": "crate", "type": "dynamik"}]})",
@@ -129,7 +133,7 @@ TEST(Scene, ReadsEveryField) {
   const char* text = R"({
     "settings": {"gravity": [1, -9], "integrator": "rk4", "substeps": 6, "dt": 0.01,
                  "restitutionThreshold": 2, "contactHertz": 20, "sleep": false,
-                 "contactRecycleDistance": 0, "continuous": false,
+                 "contactRecycleDistance": 0, "stackSolveDepth": 5, "continuous": false,
                  "bounds": {"lower": [-10, -10], "upper": [10, 30]}},
     "bodies": [
       {"name": "walls", "shapes": [
@@ -153,6 +157,7 @@ TEST(Scene, ReadsEveryField) {
   EXPECT_FLOAT_EQ(s.world.restitutionThreshold, 2);
   EXPECT_FLOAT_EQ(s.world.contactHertz, 20);
   EXPECT_EQ(s.world.contactRecycleDistance, 0.0f);
+  EXPECT_EQ(s.world.stackSolveDepth, 5);
   EXPECT_FALSE(s.world.enableSleep);
   EXPECT_FALSE(s.world.continuous);
   EXPECT_EQ(s.world.bounds.upper, (rc::Vec2{10, 30}));

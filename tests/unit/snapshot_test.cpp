@@ -168,7 +168,10 @@ TEST(Snapshot, Synctest) {
 
 // A resting pile's constraints are the same step after step, and the solver keeps their colouring
 // and lanes instead of laying them out again: every step must give the bits a solver laying them
-// out anew gives (a new world restored from the step before's snapshot).
+// out anew gives (a new world restored from the step before's snapshot). The pile is one the
+// stack solve corrects as it is let go (WorldDef::stackSolveDepth), whose piles, rows and factor
+// are found and made again in the new world, and whose bounds for the next correction are in the
+// snapshot.
 TEST(Snapshot, KeptSolverLayoutGivesTheBitsOfANewOne) {
   rc::WorldDef def;
   def.enableSleep = false;
@@ -179,11 +182,13 @@ TEST(Snapshot, KeptSolverLayoutGivesTheBitsOfANewOne) {
     return w;
   };
   const std::unique_ptr<rc::World> kept = pyramid();
-  int keptSteps = 0;
+  int keptSteps = 0, corrections = 0, whole = 0;
   for (int k = 0; k < 180; ++k) {
     const rc::WorldSnapshot before = kept->snapshot();
     kept->step(kStep);
     keptSteps += kept->profile().layoutKept;
+    whole += kept->profile().pileBodies == 36;  // every box of the base-8 pyramid
+    corrections += kept->profile().pileCorrections;
     const std::unique_ptr<rc::World> fresh = pyramid();
     fresh->restore(before);
     fresh->step(kStep);
@@ -191,6 +196,8 @@ TEST(Snapshot, KeptSolverLayoutGivesTheBitsOfANewOne) {
     ASSERT_EQ(fresh->stateHash(), kept->stateHash()) << "step " << k + 1;
   }
   EXPECT_GT(keptSteps, 120);  // the pile settles within the first second
+  EXPECT_GT(corrections, 0);
+  EXPECT_GT(whole, 170);  // a box or two not touching in a step as the pile is let go
 }
 
 // The narrowphase, the constraints' preparation and the islands walk a list of the contacts with

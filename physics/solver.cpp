@@ -231,13 +231,15 @@ void WorldState::prepareContacts() {
     constexpr float kPileCompliance = 0.001f;
     stackSolver_.build(stackConstraints_, slotInvMass_, slotInvInertia_, def_.stackSolveDepth,
                        kPileCompliance);
+    pileDetails_ = false;
     profile_.pileBodies = stackSolver_.unknowns() / 3;
     stackImpulses_.resize(4 * stackConstraints_.size());
   }
 }
 
-// A prepared constraint as the stack solve reads it, and its points' rows kept in its contact for
-// the next step.
+// What the stack solve finds the piles from, for a prepared constraint, and its points' rows kept
+// in its contact for the next step. The rest of what the rows need waits for a correction
+// (pileDetails): most steps of a still pile have none.
 void WorldState::pileConstraint(std::size_t i, const ContactConstraint& cc, Contact& c) {
   StackSolver::Constraint& sc = stackConstraints_[i];
   sc.slotA = cc.slotA;
@@ -245,18 +247,10 @@ void WorldState::pileConstraint(std::size_t i, const ContactConstraint& cc, Cont
   sc.movesA = constraintBodies_[i].movesA && cc.slotA >= 0;
   sc.movesB = constraintBodies_[i].movesB && cc.slotB >= 0;
   sc.pointCount = cc.pointCount;
-  sc.normal = cc.normal;
-  sc.friction = cc.friction;
-  float separation[2] = {};
-  for (int k = 0; k < cc.pointCount; ++k) {
-    sc.rA[k] = cc.points[k].rA;
-    sc.rB[k] = cc.points[k].rB;
-    sc.separation[k] = separation[k] = cc.points[k].baseSeparation;
-    sc.normalImpulse[k] = cc.points[k].normalImpulse;
-    sc.tangentImpulse[k] = cc.points[k].tangentImpulse;
-  }
+  for (int k = 0; k < cc.pointCount; ++k)
+    sc.separation[k] = cc.points[k].baseSeparation;
   sc.touching =
-      StackSolver::touchingPoints(separation, cc.pointCount, pileLayoutKept_ ? c.stackRows : 0);
+      StackSolver::touchingPoints(sc.separation, cc.pointCount, pileLayoutKept_ ? c.stackRows : 0);
   c.stackRows = sc.touching;
   if (cc.slotA >= 0) {
     slotInvMass_[static_cast<std::size_t>(cc.slotA)] = cc.invMassA;
@@ -278,10 +272,30 @@ void WorldState::correctPiles() {
   if (!stackSolver_.correctionWanted(solverBodies_, kPileBound * def_.linearSleepTolerance,
                                      kPileBound * def_.angularSleepTolerance))
     return;
+  if (!pileDetails_) pileDetails();
   contactSolver_.impulses(stackImpulses_);
   stackSolver_.correct(solverBodies_, stackImpulses_);
   contactSolver_.setImpulses(stackImpulses_);
   ++profile_.pileCorrections;
+}
+
+// The rest of each constraint as prepared, for the rows of the step's first correction: its
+// normal, friction and lever arms, and its carried impulses (the contact's until the step's end).
+void WorldState::pileDetails() {
+  pileDetails_ = true;
+  for (std::size_t i = 0; i < stackConstraints_.size(); ++i) {
+    StackSolver::Constraint& sc = stackConstraints_[i];
+    const Contact& c = contacts_[static_cast<std::size_t>(constraintSources_[i].contact)];
+    sc.normal = c.manifold.normal;
+    sc.friction = c.friction;
+    for (int k = 0; k < sc.pointCount; ++k) {
+      const ConstraintPoint p = contactSolver_.point(i, k);
+      sc.rA[k] = p.rA;
+      sc.rB[k] = p.rB;
+      sc.normalImpulse[k] = c.normalImpulse[k];
+      sc.tangentImpulse[k] = c.tangentImpulse[k];
+    }
+  }
 }
 
 // The groups restitution's energy budget is kept by: awake bodies joined by constraints

@@ -232,8 +232,6 @@ void addRowForces(const Row& r, double fn, double ft, double* out) {
 
 // A carried friction impulse at this fraction of its cone or more: the point was sliding.
 constexpr float kSlidingFraction = 0.99f;
-// How far apart a point that was a row last step may be and still be one (touchingPoints).
-constexpr float kRowMargin = 0.001f;
 // Once a correction is wanted, it is until the pile is under this fraction of the bounds
 // (correctionWanted).
 constexpr float kStopFraction = 0.1f;
@@ -252,15 +250,6 @@ bool StackSolver::widestByDefault() {
 #else
   return false;
 #endif
-}
-
-std::uint8_t StackSolver::touchingPoints(const float* separation, int pointCount,
-                                         std::uint8_t was) {
-  std::uint8_t bits = 0;
-  for (int k = 0; k < pointCount; ++k)
-    if (separation[k] <= 0.0f || ((was >> k) & 1 && separation[k] <= kRowMargin))
-      bits |= static_cast<std::uint8_t>(1 << k);
-  return bits;
 }
 
 void StackSolver::build(std::span<const Constraint> constraints, std::span<const float> invMass,

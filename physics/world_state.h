@@ -235,6 +235,7 @@ class WorldState {
                       Vec2& vB, float& wB);
   void prepareBounceGroups();
   void correctPiles();
+  void pileDetails();
   void pileConstraint(std::size_t i, const ContactConstraint& cc, Contact& c);
   void measureContactWork();
   void limitBounceEnergy();
@@ -385,6 +386,7 @@ class WorldState {
   std::uint64_t pileLayout_ = 0;
   std::uint32_t pileLayoutCount_ = 0;
   bool pileLayoutValid_ = false, pileLayoutKept_ = false;
+  bool pileDetails_ = false;  // this step's constraints complete (pileDetails)
   // Per slot during the solve: the free-motion velocities of the substep (as velocityRows lays
   // them out), and the solver's bodies (velocity, and how far each has moved and turned since
   // the constraints were prepared), plus the null body at the end; with an integrator other

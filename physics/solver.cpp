@@ -83,6 +83,35 @@ void WorldState::solve(float dt) {
   applyRestitution();
 }
 
+// What the stack solve finds the piles from, for a prepared constraint, and its points' rows kept
+// in its contact for the next step. The rest of what the rows need waits for a correction
+// (pileDetails): most steps of a still pile have none.
+[[gnu::always_inline]] inline void WorldState::pileConstraint(std::size_t i,
+                                                              const ContactConstraint& cc,
+                                                              Contact& c) {
+  StackSolver::Constraint& sc = stackConstraints_[i];
+  sc.slotA = cc.slotA;
+  sc.slotB = cc.slotB;
+  sc.movesA = constraintBodies_[i].movesA && cc.slotA >= 0;
+  sc.movesB = constraintBodies_[i].movesB && cc.slotB >= 0;
+  sc.pointCount = cc.pointCount;
+  for (int k = 0; k < cc.pointCount; ++k)
+    sc.separation[k] = cc.points[k].baseSeparation;
+  const std::uint8_t before = sc.touching;  // last step's, of this constraint if the layout is
+  sc.touching =
+      StackSolver::touchingPoints(sc.separation, cc.pointCount, pileLayoutKept_ ? c.stackRows : 0);
+  c.stackRows = sc.touching;
+  pileTouchChanged_ = pileTouchChanged_ || sc.touching != before;
+  if (cc.slotA >= 0) {
+    slotInvMass_[static_cast<std::size_t>(cc.slotA)] = cc.invMassA;
+    slotInvInertia_[static_cast<std::size_t>(cc.slotA)] = cc.invIA;
+  }
+  if (cc.slotB >= 0) {
+    slotInvMass_[static_cast<std::size_t>(cc.slotB)] = cc.invMassB;
+    slotInvInertia_[static_cast<std::size_t>(cc.slotB)] = cc.invIB;
+  }
+}
+
 // One constraint per touching contact with an awake side, anchors from the centres of mass. The
 // solver colours them first (it needs only their bodies), then each constraint is prepared
 // straight into its lane.
@@ -161,6 +190,7 @@ void WorldState::prepareContacts() {
           0x100000001b3ull;
     }
     const auto count = static_cast<std::uint32_t>(constraintBodies_.size());
+    pileTouchChanged_ = false;
     pileLayoutKept_ = pileLayoutValid_ && layout == pileLayout_;
     if (!pileLayoutKept_) {
       pileLayoutValid_ = count == pileLayoutCount_;
@@ -229,36 +259,13 @@ void WorldState::prepareContacts() {
     // The solve's compliance: a thousandth of each row's own effective mass inverse, enough to
     // make a box on two boxes well posed (stack_solve.h).
     constexpr float kPileCompliance = 0.001f;
+    // The contact solver's kept layout is last step's slots and moving sides: with the same
+    // touching points, the piles' links are last step's.
     stackSolver_.build(stackConstraints_, slotInvMass_, slotInvInertia_, def_.stackSolveDepth,
-                       kPileCompliance);
+                       kPileCompliance, profile_.layoutKept && !pileTouchChanged_);
     pileDetails_ = false;
     profile_.pileBodies = stackSolver_.unknowns() / 3;
     stackImpulses_.resize(4 * stackConstraints_.size());
-  }
-}
-
-// What the stack solve finds the piles from, for a prepared constraint, and its points' rows kept
-// in its contact for the next step. The rest of what the rows need waits for a correction
-// (pileDetails): most steps of a still pile have none.
-void WorldState::pileConstraint(std::size_t i, const ContactConstraint& cc, Contact& c) {
-  StackSolver::Constraint& sc = stackConstraints_[i];
-  sc.slotA = cc.slotA;
-  sc.slotB = cc.slotB;
-  sc.movesA = constraintBodies_[i].movesA && cc.slotA >= 0;
-  sc.movesB = constraintBodies_[i].movesB && cc.slotB >= 0;
-  sc.pointCount = cc.pointCount;
-  for (int k = 0; k < cc.pointCount; ++k)
-    sc.separation[k] = cc.points[k].baseSeparation;
-  sc.touching =
-      StackSolver::touchingPoints(sc.separation, cc.pointCount, pileLayoutKept_ ? c.stackRows : 0);
-  c.stackRows = sc.touching;
-  if (cc.slotA >= 0) {
-    slotInvMass_[static_cast<std::size_t>(cc.slotA)] = cc.invMassA;
-    slotInvInertia_[static_cast<std::size_t>(cc.slotA)] = cc.invIA;
-  }
-  if (cc.slotB >= 0) {
-    slotInvMass_[static_cast<std::size_t>(cc.slotB)] = cc.invMassB;
-    slotInvInertia_[static_cast<std::size_t>(cc.slotB)] = cc.invIB;
   }
 }
 

@@ -253,7 +253,8 @@ bool StackSolver::widestByDefault() {
 }
 
 void StackSolver::build(std::span<const Constraint> constraints, std::span<const float> invMass,
-                        std::span<const float> invInertia, int minDepth, float compliance) {
+                        std::span<const float> invInertia, int minDepth, float compliance,
+                        bool sameLinks) {
   constraints_ = constraints;
   invMassBySlot_ = invMass;
   invInertiaBySlot_ = invInertia;
@@ -261,6 +262,8 @@ void StackSolver::build(std::span<const Constraint> constraints, std::span<const
   rowsMade_ = false;
   // The piles are a function of which bodies touch which: the same links as the last build's
   // (a pile at rest, step after step) give the same piles, found again for nothing.
+  deepestKnown_ = false;
+  if (sameLinks && minDepth == lastMinDepth_) return;
   links_.clear();
   for (const Constraint& c : constraints)
     if (c.touching != 0)
@@ -270,10 +273,15 @@ void StackSolver::build(std::span<const Constraint> constraints, std::span<const
     lastMinDepth_ = minDepth;
     findPiles(minDepth);
   }
-  // The piles' deepest overlap (correctionWanted).
+}
+
+// The piles' deepest overlap this step (<= 0), for correctionWanted's last test: worked out
+// only in a step where a correction would otherwise be wanted.
+float StackSolver::deepestOverlap() {
+  if (deepestKnown_) return deepest_;
+  deepestKnown_ = true;
   deepest_ = 0;
-  if (unknowns_ == 0) return;
-  for (const Constraint& c : constraints) {
+  for (const Constraint& c : constraints_) {
     if (c.touching == 0) continue;
     const bool inA = c.movesA && local_[static_cast<std::size_t>(c.slotA)] >= 0 &&
                      pos_[static_cast<std::size_t>(local_[static_cast<std::size_t>(c.slotA)])] >= 0;
@@ -283,6 +291,7 @@ void StackSolver::build(std::span<const Constraint> constraints, std::span<const
     for (int k = 0; k < c.pointCount; ++k)
       if ((c.touching >> k) & 1) deepest_ = std::min(deepest_, c.separation[k]);
   }
+  return deepest_;
 }
 
 void StackSolver::findPiles(int minDepth) {
@@ -553,14 +562,6 @@ void StackSolver::factor() {
 
 bool StackSolver::correctionWanted(std::span<const SolverBody> bodies, float speed, float turn) {
   if (unknowns_ == 0) return false;
-  // A correction works on velocities and cannot push overlaps apart: a pile overlapping deeper
-  // than the slop (pressed beyond what its soft contacts hold there, or being pushed apart) is
-  // left to the passes. Corrected, 600 circles under a piston were held 9 cm higher than their
-  // contacts' law rests them, and crept down to it at 3 mm/s for seconds.
-  if (deepest_ < -kLinearSlop) {
-    wanted_ = false;
-    return false;
-  }
   // Started above the bounds, wanted until every body is under a tenth of them: corrections
   // that stop as soon as the pile is under the bounds leave it breathing just below them (a
   // base-40 pyramid at 0.02 m/s for hundreds of steps), where taking it down to a tenth stops
@@ -569,17 +570,22 @@ bool StackSolver::correctionWanted(std::span<const SolverBody> bodies, float spe
   const float v2 = f * f * speed * speed, w2 = f * f * turn * turn;
   const float u2 = kMovingFactor * kMovingFactor * speed * speed,
               uw2 = kMovingFactor * kMovingFactor * turn * turn;
-  bool over = false;
+  float fastest = 0, fastestTurn = 0;  // squared
   for (const std::int32_t slot : order_) {
     const SolverBody& b = bodies[static_cast<std::size_t>(slot)];
-    const float bv2 = dot(b.v, b.v), bw2 = b.w * b.w;
-    if (bv2 > u2 || bw2 > uw2) {
-      wanted_ = false;
-      return false;
-    }
-    over = over || bv2 > v2 || bw2 > w2;
+    fastest = std::max(fastest, dot(b.v, b.v));
+    fastestTurn = std::max(fastestTurn, b.w * b.w);
   }
-  wanted_ = over;
+  if (fastest > u2 || fastestTurn > uw2) {
+    wanted_ = false;
+    return false;
+  }
+  const bool over = fastest > v2 || fastestTurn > w2;
+  // A correction works on velocities and cannot push overlaps apart: a pile overlapping deeper
+  // than the slop (pressed beyond what its soft contacts hold there, or being pushed apart) is
+  // left to the passes. Corrected, 600 circles under a piston were held 9 cm higher than their
+  // contacts' law rests them, and crept down to it at 3 mm/s for seconds.
+  wanted_ = over && deepestOverlap() >= -kLinearSlop;
   return wanted_;
 }
 

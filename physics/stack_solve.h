@@ -75,8 +75,11 @@ class StackSolver {
   // snapshot corrects as the one it was taken from. invMass / invInertia per solver slot. The
   // spans are read again by the first correction after it (the rows and the factor are made
   // only where one is wanted): they must stay as they are until the next build.
+  // sameLinks: the caller knows the constraints' slots, moving sides and touching points are
+  // last build's (the piles are then last build's too, without comparing them).
   void build(std::span<const Constraint> constraints, std::span<const float> invMass,
-             std::span<const float> invInertia, int minDepth, float compliance);
+             std::span<const float> invInertia, int minDepth, float compliance,
+             bool sameLinks = false);
   bool active() const { return unknowns_ > 0; }
   // Whether a correction is wanted after this relax pass: some body of the piles moves faster
   // than speed (m/s) or turns faster than turn (rad/s); once wanted, until every one is under a
@@ -136,7 +139,9 @@ class StackSolver {
   void findPiles(int minDepth);
   void makeRows();
   void factor();
-  float deepest_ = 0;  // the piles' deepest overlap this step (<= 0)
+  float deepest_ = 0;  // the piles' deepest overlap this step (<= 0), once deepestKnown_
+  bool deepestKnown_ = false;
+  float deepestOverlap();
   // A touching constraint's moving slots and rows: what the piles are found from.
   struct Link {
     std::int32_t slotA, slotB;

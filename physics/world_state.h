@@ -386,7 +386,8 @@ class WorldState {
   std::uint64_t pileLayout_ = 0;
   std::uint32_t pileLayoutCount_ = 0;
   bool pileLayoutValid_ = false, pileLayoutKept_ = false;
-  bool pileDetails_ = false;  // this step's constraints complete (pileDetails)
+  bool pileDetails_ = false;       // this step's constraints complete (pileDetails)
+  bool pileTouchChanged_ = false;  // some constraint's touching points are not last step's
   // Per slot during the solve: the free-motion velocities of the substep (as velocityRows lays
   // them out), and the solver's bodies (velocity, and how far each has moved and turned since
   // the constraints were prepared), plus the null body at the end; with an integrator other

@@ -83,8 +83,9 @@ class StackSolver {
   bool active() const { return unknowns_ > 0; }
   // Whether a correction is wanted after this relax pass: some body of the piles moves faster
   // than speed (m/s) or turns faster than turn (rad/s); once wanted, until every one is under a
-  // tenth of both. Not while some body is over 25 times the bounds: that pile is moving, not
-  // settling, and the passes take it. The passes alone keep a still pile still (its warm start is
+  // tenth of both. Not while some body is over 25 times the bounds (that pile is moving, not
+  // settling) nor while a pile overlaps deeper than the slop (a correction cannot push apart):
+  // the passes take those. The passes alone keep a still pile still (its warm start is
   // the correction's answer): corrected only when it moves, a pile held still costs the passes.
   bool correctionWanted(std::span<const SolverBody> bodies, float speed, float turn);
   // The last answer, which decides the next one's bounds: part of the world's state.

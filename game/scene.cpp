@@ -229,8 +229,11 @@ void parseSettings(const json& j, SceneDesc& scene, const std::string& file) {
   w.maxPushoutSpeed = number(j, "maxPushoutSpeed", w.maxPushoutSpeed, at, "");
   w.contactRecycleDistance = number(j, "contactRecycleDistance", w.contactRecycleDistance, at, "");
   if (const json* v = find(j, "stackSolveDepth")) {
-    if (!v->is_number_integer() || v->get<long long>() < 0 || v->get<long long>() > 1000000)
-      at.fail("stackSolveDepth", "must be an integer from 0 to 1000000, got " + describe(*v));
+    if (!v->is_number_integer() || v->get<long long>() < 0 ||
+        v->get<long long>() > rc::kMaxStackSolveDepth)
+      at.fail("stackSolveDepth", "must be an integer from 0 to " +
+                                     std::to_string(rc::kMaxStackSolveDepth) + ", got " +
+                                     describe(*v));
     w.stackSolveDepth = static_cast<int>(v->get<long long>());
   }
   w.continuous = boolean(j, "continuous", w.continuous, at, "");

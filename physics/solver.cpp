@@ -112,6 +112,35 @@ void WorldState::solve(float dt) {
   }
 }
 
+// Whether the constraints' layout is the one before (pileLayoutKept_, for pileConstraint).
+void WorldState::advancePileLayout() {
+  // A point stays a row within 1 mm apart only while the constraints are those of the steps
+  // before: kept through changes (a point that lifted off as a pile was let go held 1 mm short
+  // as a row), a base-40 pyramid slept at step 75-81 with 5-9 mm instead of 32 with 0.5-0.8
+  // mm; without the margin, at 36-38 with 1-2 mm, and a 1:1000 stack at 32 substeps drifted 2
+  // mm and tilted (tests/stress, mass-ratio). "The same" as the contact solver keeps its
+  // layout: as last step's, and after a change of count only from the second step of the new
+  // count (kept from the first, base 40 slept at 84-213). Its hash and count, not the contact
+  // solver's cache, so that a restored world decides as the one it was taken from.
+  std::uint64_t layout = 0xcbf29ce484222325ull ^ static_cast<std::uint64_t>(awakeCount_);
+  for (const ConstraintBodies& cb : constraintBodies_) {
+    const std::uint64_t word = static_cast<std::uint64_t>(static_cast<std::uint32_t>(cb.slotA)) |
+                               static_cast<std::uint64_t>(static_cast<std::uint32_t>(cb.slotB))
+                                   << 32;
+    layout = (layout ^ word) * 0x100000001b3ull;
+    layout =
+        (layout ^ static_cast<std::uint64_t>(cb.pointCount | cb.movesA << 2 | cb.movesB << 3)) *
+        0x100000001b3ull;
+  }
+  const auto count = static_cast<std::uint32_t>(constraintBodies_.size());
+  pileLayoutKept_ = pileLayoutValid_ && layout == pileLayout_;
+  if (!pileLayoutKept_) {
+    pileLayoutValid_ = count == pileLayoutCount_;
+    pileLayout_ = layout;
+    pileLayoutCount_ = count;
+  }
+}
+
 // One constraint per touching contact with an awake side, anchors from the centres of mass. The
 // solver colours them first (it needs only their bodies), then each constraint is prepared
 // straight into its lane.
@@ -171,32 +200,8 @@ void WorldState::prepareContacts() {
 
   const bool piles = def_.stackSolveDepth > 0;
   if (piles) {
-    // A point stays a row within 1 mm apart only while the constraints are those of the steps
-    // before: kept through changes (a point that lifted off as a pile was let go held 1 mm short
-    // as a row), a base-40 pyramid slept at step 75-81 with 5-9 mm instead of 32 with 0.5-0.8
-    // mm; without the margin, at 36-38 with 1-2 mm, and a 1:1000 stack at 32 substeps drifted 2
-    // mm and tilted (tests/stress, mass-ratio). "The same" as the contact solver keeps its
-    // layout: as last step's, and after a change of count only from the second step of the new
-    // count (kept from the first, base 40 slept at 84-213). Its hash and count, not the contact
-    // solver's cache, so that a restored world decides as the one it was taken from.
-    std::uint64_t layout = 0xcbf29ce484222325ull ^ static_cast<std::uint64_t>(awakeCount_);
-    for (const ConstraintBodies& cb : constraintBodies_) {
-      const std::uint64_t word = static_cast<std::uint64_t>(static_cast<std::uint32_t>(cb.slotA)) |
-                                 static_cast<std::uint64_t>(static_cast<std::uint32_t>(cb.slotB))
-                                     << 32;
-      layout = (layout ^ word) * 0x100000001b3ull;
-      layout =
-          (layout ^ static_cast<std::uint64_t>(cb.pointCount | cb.movesA << 2 | cb.movesB << 3)) *
-          0x100000001b3ull;
-    }
-    const auto count = static_cast<std::uint32_t>(constraintBodies_.size());
-    pileTouchChanged_ = false;
-    pileLayoutKept_ = pileLayoutValid_ && layout == pileLayout_;
-    if (!pileLayoutKept_) {
-      pileLayoutValid_ = count == pileLayoutCount_;
-      pileLayout_ = layout;
-      pileLayoutCount_ = count;
-    }
+    advancePileLayout();
+    pileTouchChanged_ = false;  // pileConstraint sets it
     stackConstraints_.resize(constraintSources_.size());
     slotInvMass_.resize(static_cast<std::size_t>(awakeCount_));
     slotInvInertia_.resize(static_cast<std::size_t>(awakeCount_));
@@ -265,7 +270,6 @@ void WorldState::prepareContacts() {
                        kPileCompliance, profile_.layoutKept && !pileTouchChanged_);
     pileDetails_ = false;
     profile_.pileBodies = stackSolver_.unknowns() / 3;
-    stackImpulses_.resize(4 * stackConstraints_.size());
   }
 }
 
@@ -280,6 +284,7 @@ void WorldState::correctPiles() {
                                      kPileBound * def_.angularSleepTolerance))
     return;
   if (!pileDetails_) pileDetails();
+  stackImpulses_.resize(4 * stackConstraints_.size());
   contactSolver_.impulses(stackImpulses_);
   stackSolver_.correct(solverBodies_, stackImpulses_);
   contactSolver_.setImpulses(stackImpulses_);

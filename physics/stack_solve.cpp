@@ -283,11 +283,7 @@ float StackSolver::deepestOverlap() {
   deepest_ = 0;
   for (const Constraint& c : constraints_) {
     if (c.touching == 0) continue;
-    const bool inA = c.movesA && local_[static_cast<std::size_t>(c.slotA)] >= 0 &&
-                     pos_[static_cast<std::size_t>(local_[static_cast<std::size_t>(c.slotA)])] >= 0;
-    const bool inB = c.movesB && local_[static_cast<std::size_t>(c.slotB)] >= 0 &&
-                     pos_[static_cast<std::size_t>(local_[static_cast<std::size_t>(c.slotB)])] >= 0;
-    if (!inA && !inB) continue;
+    if (position(local(c.slotA, c.movesA)) < 0 && position(local(c.slotB, c.movesB)) < 0) continue;
     for (int k = 0; k < c.pointCount; ++k)
       if ((c.touching >> k) & 1) deepest_ = std::min(deepest_, c.separation[k]);
   }
@@ -322,10 +318,6 @@ void StackSolver::findPiles(int minDepth) {
     if (c.movesB) localOf(c.slotB);
   }
   const auto m = static_cast<std::int32_t>(slot_.size());
-  // The local number of a side that moves and touches (-1: neither).
-  auto local = [&](std::int32_t slot, bool moves) {
-    return moves ? local_[static_cast<std::size_t>(slot)] : -1;
-  };
   // Adjacency of the moving bodies over touching constraints (compressed rows), and the
   // sources: bodies resting on something contacts do not move.
   level_.assign(static_cast<std::size_t>(m), -1);
@@ -345,10 +337,7 @@ void StackSolver::findPiles(int minDepth) {
       }
     }
   }
-  if (queue_.empty()) {
-    stale_ = true;
-    return;
-  }
+  if (queue_.empty()) return;
   for (std::int32_t s = 0; s < m; ++s)
     adjStart_[static_cast<std::size_t>(s) + 1] += adjStart_[static_cast<std::size_t>(s)];
   adj_.resize(static_cast<std::size_t>(adjStart_[static_cast<std::size_t>(m)]));
@@ -395,10 +384,7 @@ void StackSolver::findPiles(int minDepth) {
     pos_[static_cast<std::size_t>(s)] = static_cast<std::int32_t>(order_.size());
     order_.push_back(slot_[static_cast<std::size_t>(s)]);
   }
-  if (order_.empty()) {
-    stale_ = true;
-    return;
-  }
+  if (order_.empty()) return;
   invMass_.resize(order_.size());
   invInertia_.resize(order_.size());
   unknowns_ = 3 * static_cast<std::int32_t>(order_.size());
@@ -408,7 +394,6 @@ void StackSolver::findPiles(int minDepth) {
 // constraints; and the pile's inverse masses by position in the system.
 void StackSolver::makeRows() {
   rowsMade_ = true;
-  stale_ = true;
   rows_.clear();
   for (std::size_t p = 0; p < order_.size(); ++p) {
     invMass_[p] = invMassBySlot_[static_cast<std::size_t>(order_[p])];
@@ -417,14 +402,10 @@ void StackSolver::makeRows() {
   const std::span<const Constraint> constraints = constraints_;
   const auto C = static_cast<std::int32_t>(constraints.size());
   const float compliance = compliance_;
-  auto local = [&](std::int32_t slot, bool moves) {
-    return moves ? local_[static_cast<std::size_t>(slot)] : -1;
-  };
   for (std::int32_t i = 0; i < C; ++i) {
     const Constraint& c = constraints[static_cast<std::size_t>(i)];
     const std::int32_t a = local(c.slotA, c.movesA), b = local(c.slotB, c.movesB);
-    const std::int32_t pa = a >= 0 ? pos_[static_cast<std::size_t>(a)] : -1;
-    const std::int32_t pb = b >= 0 ? pos_[static_cast<std::size_t>(b)] : -1;
+    const std::int32_t pa = position(a), pb = position(b);
     if (pa < 0 && pb < 0) continue;
     // Only the support: a contact between two bodies of one level (neighbours in a row) is
     // left to the passes. Solved exactly with the rest, such a contact is asked to pull (the
@@ -480,7 +461,6 @@ void StackSolver::makeRows() {
 }
 
 void StackSolver::factor() {
-  stale_ = false;
   // The envelope: an unknown's row reaches back to the first unknown of the earliest body it
   // touches.
   const auto bodies = static_cast<std::int32_t>(order_.size());
@@ -591,8 +571,10 @@ bool StackSolver::correctionWanted(std::span<const SolverBody> bodies, float spe
 
 void StackSolver::correct(std::span<SolverBody> bodies, std::span<float> impulses) {
   if (unknowns_ == 0) return;
-  if (!rowsMade_) makeRows();
-  if (stale_) factor();
+  if (!rowsMade_) {
+    makeRows();
+    factor();
+  }
   rhs_.assign(static_cast<std::size_t>(unknowns_), 0.0);
   vn_.resize(rows_.size());
   vt_.resize(rows_.size());

@@ -134,9 +134,8 @@ class StackSolver {
   std::span<const Constraint> constraints_;
   std::span<const float> invMassBySlot_, invInertiaBySlot_;
   float compliance_ = 0;
-  bool rowsMade_ = false;
-  bool stale_ = true;    // no factor of these rows yet
-  bool wanted_ = false;  // the last correctionWanted's answer
+  bool rowsMade_ = false;  // and factored, since the last build
+  bool wanted_ = false;    // the last correctionWanted's answer
   void findPiles(int minDepth);
   void makeRows();
   void factor();
@@ -155,6 +154,14 @@ class StackSolver {
   std::vector<std::int32_t> local_, slot_;
   // Per local number (a body of a touching constraint) while building.
   std::vector<std::int32_t> level_, pos_, queue_, parent_, depth_;
+  // A constraint side's local number if it moves and touches, else -1; a local number's position
+  // in the system if it is a pile's body, else -1 (both as the last findPiles left them).
+  std::int32_t local(std::int32_t slot, bool moves) const {
+    return moves ? local_[static_cast<std::size_t>(slot)] : -1;
+  }
+  std::int32_t position(std::int32_t local) const {
+    return local >= 0 ? pos_[static_cast<std::size_t>(local)] : -1;
+  }
   std::vector<std::int32_t> adjStart_, adj_;
   std::vector<double> rhs_;
   std::vector<double> vn_, vt_, delta_;  // delta_: per unknown, the step's impulse

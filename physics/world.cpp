@@ -78,9 +78,10 @@ World::World(const WorldDef& def) {
   requireNonNegative("world", "maxPushoutSpeed", def.maxPushoutSpeed);
   requireNonNegative("world", "contactRecycleDistance", def.contactRecycleDistance);
   requireNonNegative("world", "quarantineSpeed", def.quarantineSpeed);
-  if (def.stackSolveDepth < 0 || def.stackSolveDepth > 1000000)
+  if (def.stackSolveDepth < 0 || def.stackSolveDepth > kMaxStackSolveDepth)
     failDefinition("world", "stackSolveDepth",
-                   "is " + std::to_string(def.stackSolveDepth) + " (must be 0 to 1000000)");
+                   "is " + std::to_string(def.stackSolveDepth) + " (must be 0 to " +
+                       std::to_string(kMaxStackSolveDepth) + ")");
   if (def.maxSolverLanes != 4 && def.maxSolverLanes != 8)
     failDefinition("world", "maxSolverLanes",
                    "is " + std::to_string(def.maxSolverLanes) + " (must be 4 or 8)");

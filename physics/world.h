@@ -76,6 +76,8 @@ struct ShapeDef {
   std::uint64_t userData = 0;
 };
 
+inline constexpr int kMaxStackSolveDepth = 1000000;  // WorldDef::stackSolveDepth's largest
+
 struct WorldDef {
   Vec2 gravity{0.0f, -10.0f};
   Integrator integrator = Integrator::semiImplicitEuler;
@@ -99,7 +101,7 @@ struct WorldDef {
   // moves faster than 0.4 of the sleep tolerances (until all are under a tenth of that): a tall
   // stack is still from its first steps instead of breathing for hundreds (physics/stack_solve.h,
   // physics/README.md "Piles"). 0: off.
-  int stackSolveDepth = 3;
+  int stackSolveDepth = 3;  // 0 to kMaxStackSolveDepth
   // Continuous collision: contact points are kept while shapes are within what their bodies
   // can close in the step (speculative contacts), so fast bodies stop at surfaces instead of
   // passing through thin walls. Off: only within kSpeculativeDistance (shows the tunnelling).

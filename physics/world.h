@@ -107,8 +107,9 @@ struct WorldDef {
   // passing through thin walls. Off: only within kSpeculativeDistance (shows the tunnelling).
   bool continuous = true;
   // Sleeping: an island of touching bodies whose every body has moved slower than the
-  // tolerances for timeToSleep seconds stops being simulated until something wakes it (a
-  // contact with an awake body, a force, an impulse, a velocity or transform set, wake()).
+  // tolerances for timeToSleep seconds (a third of it under a tenth of both) stops being
+  // simulated until something wakes it (a contact with an awake body, a force, an impulse, a
+  // velocity or transform set, wake()).
   bool enableSleep = true;
   float timeToSleep = 0.5f;                                   // s
   float linearSleepTolerance = 0.05f;                         // m/s

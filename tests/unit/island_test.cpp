@@ -121,4 +121,56 @@ TEST(World, BodiesInsideEachOtherStayAwakeUntilPushedOut) {
   EXPECT_GT(asleepAt, 0) << "never slept";
 }
 
+// Bodies drifting at constant speed (no gravity) fall asleep after timeToSleep (0.5 s, 30
+// steps) while under the tolerances, after a third of it (10 steps) while under a tenth of both,
+// and never above them. Counted exactly: still time adds dt or 3 dt a step, in float.
+TEST(World, StillerBodiesSleepSooner) {
+  rc::WorldDef def;
+  def.gravity = {0, 0};
+  rc::World w(def);
+  const float lin = def.linearSleepTolerance, ang = def.angularSleepTolerance;
+  struct Drift {
+    Vec2 v;
+    float w;
+    int sleepsAt;  // -1: never
+  };
+  auto stepsFor = [&](float perStep) {  // the first step whose still time reaches timeToSleep
+    float t = 0;
+    int k = 0;
+    while (t < def.timeToSleep)
+      t += perStep, ++k;
+    return k;
+  };
+  const float dt = 1.0f / 60.0f;
+  const int quick = stepsFor(3.0f * dt), slow = stepsFor(dt);
+  EXPECT_EQ(quick, 10);
+  EXPECT_EQ(slow, 30);
+  const std::vector<Drift> drifts = {
+      {{0, 0}, 0, quick},            // still
+      {{0.09f * lin, 0}, 0, quick},  // under a tenth
+      {{0, -0.06f * lin}, 0.09f * ang, quick},
+      {{0.11f * lin, 0}, 0, slow},  // over a tenth, under the tolerance
+      {{0, 0}, 0.11f * ang, slow},
+      {{0.05f * lin, 0.05f * lin}, 0.5f * ang, slow},
+      {{0.99f * lin, 0}, 0, slow},
+      {{1.01f * lin, 0}, 0, -1},  // over it
+      {{0, 0}, 1.01f * ang, -1},
+  };
+  std::vector<BodyId> bodies;
+  for (std::size_t i = 0; i < drifts.size(); ++i) {
+    bodies.push_back(w.createBody(dynamicAt({10.0f * static_cast<float>(i), 0})));
+    w.createShape(bodies.back(), rc::makeBox(0.5f, 0.5f));
+    w.setLinearVelocity(bodies.back(), drifts[i].v);
+    w.setAngularVelocity(bodies.back(), drifts[i].w);
+  }
+  std::vector<int> asleepAt(drifts.size(), -1);
+  for (int k = 1; k <= 120; ++k) {
+    w.step(dt);
+    for (std::size_t i = 0; i < drifts.size(); ++i)
+      if (asleepAt[i] < 0 && !w.isAwake(bodies[i])) asleepAt[i] = k;
+  }
+  for (std::size_t i = 0; i < drifts.size(); ++i)
+    EXPECT_EQ(asleepAt[i], drifts[i].sleepsAt) << "body " << i;
+}
+
 }  // namespace island_test

@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <vector>
 
 #include "physics/stack_solve.h"
@@ -326,36 +327,36 @@ TEST(StackSolve, ACorrectionIsWantedWhileThePileMoves) {
   constexpr float kSpeed = 0.02f, kTurn = 0.01f;
   auto wanted = [&] { return solver.correctionWanted(pile.bodies, kSpeed, kTurn); };
   EXPECT_FALSE(wanted());
-  pile.bodies[3].v = {1.0f, 0.0f};  // not in a pile
-  EXPECT_FALSE(wanted());
-  pile.bodies[2].v = {0.0f, -0.5f * kSpeed};
-  EXPECT_FALSE(wanted());
-  pile.bodies[2].v = {0.0f, -1.5f * kSpeed};
-  EXPECT_TRUE(wanted());
-  pile.bodies[2].v = {0.0f, -0.5f * kSpeed};
-  EXPECT_TRUE(wanted());
-  pile.bodies[2].v = {0.0f, -0.11f * kSpeed};
-  EXPECT_TRUE(wanted());
-  pile.bodies[2].v = {0.0f, -0.09f * kSpeed};
-  EXPECT_FALSE(wanted());
-  pile.bodies[2].v = {0.0f, -0.5f * kSpeed};
-  EXPECT_FALSE(wanted());
-  pile.bodies[0].w = 1.5f * kTurn;
-  EXPECT_TRUE(wanted());
-  pile.bodies[0].w = 0.05f * kTurn;
-  EXPECT_TRUE(wanted());  // body 2 still at half the speed bound
-  pile.bodies[2].v = {};
-  EXPECT_FALSE(wanted());
-  // A pile with a body over 25 times the bounds is moving, not settling: left to the passes.
-  pile.bodies[1].v = {0.0f, -20.0f * kSpeed};
-  EXPECT_TRUE(wanted());
-  pile.bodies[0].v = {26.0f * kSpeed, 0.0f};
-  EXPECT_FALSE(wanted());
-  pile.bodies[0].v = {};
-  pile.bodies[0].w = 26.0f * kTurn;
-  EXPECT_FALSE(wanted());
-  pile.bodies[0].w = 0.0f;
-  EXPECT_TRUE(wanted());
+  // Each row sets one body's velocity and turn, in order: the answer depends on the one before.
+  struct Move {
+    int body;
+    Vec2 v;
+    float w;
+    bool wanted;
+  };
+  const Move moves[] = {
+      {3, {1.0f, 0.0f}, 0.0f, false},            // not in a pile
+      {2, {0.0f, -0.5f * kSpeed}, 0.0f, false},  // under the bound
+      {2, {0.0f, -1.5f * kSpeed}, 0.0f, true},   // over it
+      {2, {0.0f, -0.5f * kSpeed}, 0.0f, true},   // wanted until all are under a tenth
+      {2, {0.0f, -0.11f * kSpeed}, 0.0f, true},
+      {2, {0.0f, -0.09f * kSpeed}, 0.0f, false},
+      {2, {0.0f, -0.5f * kSpeed}, 0.0f, false},
+      {0, {}, 1.5f * kTurn, true},   // turning over the bound
+      {0, {}, 0.05f * kTurn, true},  // body 2 still at half the speed bound
+      {2, {}, 0.0f, false},
+      // A pile with a body over 25 times the bounds is moving, not settling: left to the passes.
+      {1, {0.0f, -20.0f * kSpeed}, 0.0f, true},
+      {0, {26.0f * kSpeed, 0.0f}, 0.0f, false},
+      {0, {}, 26.0f * kTurn, false},
+      {0, {}, 0.0f, true},  // body 1 still at 20 times
+  };
+  for (std::size_t i = 0; i < std::size(moves); ++i) {
+    const Move& m = moves[i];
+    pile.bodies[static_cast<std::size_t>(m.body)].v = m.v;
+    pile.bodies[static_cast<std::size_t>(m.body)].w = m.w;
+    EXPECT_EQ(wanted(), m.wanted) << "move " << i;
+  }
 }
 
 // A pyramid of unit boxes, base `base`, each resting on the two below it across half its bottom

@@ -239,17 +239,18 @@ bool WorldState::recycle(Contact& c, const Body& a, const Body& b, Vec2 offset,
   const float reach = tolerance - std::min(reachA, reachB) * std::fabs(invMul(dqA, dqB).s);
   if (reach < 0.0f) return false;
   Manifold& m = c.manifold;
-  Vec2 carried[2];  // B's carried point from A's
+  Vec2 onA[2], carried[2];  // A's point turned with it; B's carried point from A's
   for (int k = 0; k < m.pointCount; ++k) {
     const ManifoldPoint& mp = m.points[k];
-    carried[k] = offset + rotate(dqB, mp.anchorB) - rotate(dqA, mp.anchorA);
+    onA[k] = rotate(dqA, mp.anchorA);
+    carried[k] = offset + rotate(dqB, mp.anchorB) - onA[k];
     if (!(lengthSquared(carried[k]) <= reach * reach)) return false;
   }
   // The point reported (events, contactPoints): midway between the two carried points.
   for (int k = 0; k < m.pointCount; ++k) {
     ManifoldPoint& mp = m.points[k];
     mp.separation = c.madeSeparation[k] + dot(carried[k], m.normal);
-    mp.point = a.xf.p + rotate(dqA, mp.anchorA) + 0.5f * carried[k];
+    mp.point = a.xf.p + onA[k] + 0.5f * carried[k];
   }
   c.recycled = true;
   return true;

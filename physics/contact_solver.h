@@ -56,10 +56,13 @@ struct ContactConstraint {
 // its point count.
 struct ConstraintBodies {
   std::int32_t slotA, slotB;
-  bool movesA, movesB;
   int pointCount;
+  bool movesA, movesB;
+  // Named and zeroed, so that a list of them compares as its bytes (ContactSolver::prepare).
+  std::uint8_t padding[2] = {};
   bool operator==(const ConstraintBodies&) const = default;
 };
+static_assert(sizeof(ConstraintBodies) == 16, "no padding but the named bytes");
 
 // A point's results after the solve.
 struct SolvedPoint {

@@ -174,7 +174,7 @@ void WorldState::prepareContacts() {
     const bool movesA = a.invMass > 0.0f || a.invInertia > 0.0f;
     const bool movesB = b.invMass > 0.0f || b.invInertia > 0.0f;
     constraintSources_.push_back({static_cast<std::int32_t>(ci), bodyA, bodyB});
-    constraintBodies_.push_back({slotA, slotB, movesA, movesB, c.manifold.pointCount});
+    constraintBodies_.push_back({slotA, slotB, c.manifold.pointCount, movesA, movesB});
     // The push-out speed is a body's, not each contact's: a body overlapping k others past the
     // slop is pushed out of each at 1/k of it, so that together they push it no faster than the
     // push-out speed (what the relax pass cannot take back of a push stays in the body as

@@ -15,6 +15,19 @@
 
 namespace rc {
 
+// FNV-1a, 64-bit (Fowler, Noll and Vo): the hashes of world and match states, levels, and the
+// piles' constraint layout (which mixes a word at a time with the same constants).
+inline constexpr std::uint64_t kFnvOffset = 0xcbf29ce484222325ull;
+inline constexpr std::uint64_t kFnvPrime = 0x100000001b3ull;
+// FNV-1a over bytes, continuing from `h`.
+inline std::uint64_t fnv1a(std::span<const std::uint8_t> bytes, std::uint64_t h = kFnvOffset) {
+  for (const std::uint8_t b : bytes) {
+    h ^= b;
+    h *= kFnvPrime;
+  }
+  return h;
+}
+
 class ByteWriter {
  public:
   explicit ByteWriter(std::vector<std::uint8_t>& out) : out_(out) {}

@@ -669,11 +669,9 @@ bool ContactSolver::prepare(std::span<const ConstraintBodies> constraints, int b
   const int lanes = maxLanes >= 8 ? widestLanes() : 4;
   // Compared as bytes (every byte of one is a field or zeroed padding): field by field it was
   // two thirds of this function in a resting pile, every step.
-  const bool same =
-      constraints.size() == d.laidOut.size() &&
+  if (lanes == d.lanes && bodyCount == d.laidOutBodies && constraints.size() == d.laidOut.size() &&
       (constraints.empty() || std::memcmp(constraints.data(), d.laidOut.data(),
-                                          constraints.size() * sizeof(ConstraintBodies)) == 0);
-  if (lanes == d.lanes && bodyCount == d.laidOutBodies && same) {
+                                          constraints.size() * sizeof(ConstraintBodies)) == 0)) {
     if (lanes == 8) {
       clearPartial(d.batches8, d.partial);
     } else {

@@ -60,7 +60,6 @@ struct ConstraintBodies {
   bool movesA, movesB;
   // Named and zeroed, so that a list of them compares as its bytes (ContactSolver::prepare).
   std::uint8_t padding[2] = {};
-  bool operator==(const ConstraintBodies&) const = default;
 };
 static_assert(sizeof(ConstraintBodies) == 16, "no padding but the named bytes");
 

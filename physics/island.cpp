@@ -67,7 +67,7 @@ void WorldState::updateSleep(float dt) {
     // Still to a tenth of the tolerances (at the step's end and, on average, since it became
     // still), still time counts three times as fast: a third of timeToSleep that still is a
     // thirtieth of the motion the rule allows in the whole of it. A pile the stack solve holds
-    // (physics/README.md, "Piles") sleeps at step 14-15 instead of 30 (base 20 / 40 pyramids); a
+    // (physics/README.md, "Piles") sleeps at step 14 / 14-18 instead of 30 / 32 (base 20 / 40); a
     // body at the top of a throw is that slow for a millisecond, and one pushed out of an
     // overlap by its position, still at every step's end, moves on average faster than that.
     const float quick = 3.0f * dt;

@@ -564,12 +564,7 @@ void decode(ByteReader& r, WorldState& s) {
 }  // namespace
 
 std::uint64_t World::stateHash() const {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  for (std::uint8_t byte : snapshot()) {
-    h ^= byte;
-    h *= 0x100000001b3ull;
-  }
-  return h;
+  return fnv1a(snapshot());
 }
 
 }  // namespace rc

@@ -6,6 +6,7 @@
 #include <limits>
 #include <numeric>
 
+#include "physics/bytes.h"
 #include "physics/constants.h"
 #include "physics/union_find.h"
 #include "physics/world.h"
@@ -122,15 +123,15 @@ void WorldState::advancePileLayout() {
   // layout: as last step's, and after a change of count only from the second step of the new
   // count (kept from the first, base 40 slept at 84-213). Its hash and count, not the contact
   // solver's cache, so that a restored world decides as the one it was taken from.
-  std::uint64_t layout = 0xcbf29ce484222325ull ^ static_cast<std::uint64_t>(awakeCount_);
+  std::uint64_t layout = kFnvOffset ^ static_cast<std::uint64_t>(awakeCount_);
   for (const ConstraintBodies& cb : constraintBodies_) {
     const std::uint64_t word = static_cast<std::uint64_t>(static_cast<std::uint32_t>(cb.slotA)) |
                                static_cast<std::uint64_t>(static_cast<std::uint32_t>(cb.slotB))
                                    << 32;
-    layout = (layout ^ word) * 0x100000001b3ull;
+    layout = (layout ^ word) * kFnvPrime;
     layout =
         (layout ^ static_cast<std::uint64_t>(cb.pointCount | cb.movesA << 2 | cb.movesB << 3)) *
-        0x100000001b3ull;
+        kFnvPrime;
   }
   const auto count = static_cast<std::uint32_t>(constraintBodies_.size());
   pileLayoutKept_ = pileLayoutValid_ && layout == pileLayout_;

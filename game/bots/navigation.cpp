@@ -6,6 +6,8 @@
 #include <limits>
 #include <queue>
 
+#include "physics/bytes.h"
+
 namespace game {
 namespace {
 
@@ -148,11 +150,11 @@ NavGrid makeNavGrid(int width, int height, float cell, rc::Vec2 origin,
   }
   labelRegions(grid);
   spreadPatrolPoints(grid, places);
-  std::uint64_t h = 0xcbf29ce484222325ull;
+  std::uint64_t h = rc::kFnvOffset;
   auto mix = [&h](std::uint64_t v) {
     for (int k = 0; k < 8; ++k) {
       h ^= (v >> (8 * k)) & 0xFFu;
-      h *= 0x100000001b3ull;
+      h *= rc::kFnvPrime;
     }
   };
   mix(static_cast<std::uint64_t>(width));

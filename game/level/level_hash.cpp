@@ -3,6 +3,8 @@
 #include <bit>
 #include <string>
 
+#include "physics/bytes.h"
+
 namespace game {
 namespace {
 
@@ -12,7 +14,7 @@ class Hasher {
     const auto* p = static_cast<const unsigned char*>(data);
     for (std::size_t k = 0; k < n; ++k) {
       h_ ^= p[k];
-      h_ *= 0x100000001b3ull;
+      h_ *= rc::kFnvPrime;
     }
   }
   void u64(std::uint64_t v) {
@@ -44,7 +46,7 @@ class Hasher {
   std::uint64_t value() const { return h_; }
 
  private:
-  std::uint64_t h_ = 0xcbf29ce484222325ull;
+  std::uint64_t h_ = rc::kFnvOffset;
 };
 
 }  // namespace

@@ -201,14 +201,6 @@ void io(A& a, S& s, std::size_t weapons) {
 
 }  // namespace
 
-std::uint64_t fnv1a(std::span<const std::uint8_t> bytes, std::uint64_t h) {
-  for (std::uint8_t b : bytes) {
-    h ^= b;
-    h *= 0x100000001b3ull;
-  }
-  return h;
-}
-
 MatchSnapshot saveMatch(const MatchState& s) {
   MatchSnapshot out;
   rc::ByteWriter w(out);

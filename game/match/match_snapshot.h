@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "game/match/match.h"
+#include "physics/bytes.h"
 
 namespace game {
 
@@ -33,8 +34,7 @@ MatchSnapshot saveMatch(const MatchState& s);
 // refused snapshot (MatchSnapshotError) leaves the match as it was.
 void restoreMatch(MatchState& s, std::span<const std::uint8_t> snapshot);
 
-// FNV-1a (64-bit) over bytes, continuing from `h`.
-std::uint64_t fnv1a(std::span<const std::uint8_t> bytes, std::uint64_t h = 0xcbf29ce484222325ull);
+using rc::fnv1a;  // (physics/bytes.h)
 
 // What differs between two matches of the same level and configuration, in the order the state
 // is described (the tick, the generator, actors, minds, props, grenades, then the world's

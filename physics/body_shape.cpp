@@ -143,6 +143,7 @@ void WorldState::updateMass(Body& b) {
   const std::array<double, 2> origin = preciseOrigin(b);
   const Vec2 oldLocalCenter = b.localCenter;
   massProperties(b);
+  lanesCurrent_ = false;  // the lanes hold the masses and the arms from the centre of mass
   if (b.slot < 0 || b.localCenter == oldLocalCenter) return;
   // The centre of mass moved: keep the origin where it is and the motion of every point.
   const auto i = 3 * static_cast<std::size_t>(b.slot);
@@ -352,6 +353,7 @@ void World::setFriction(ShapeId id, float friction) {
   WorldState::ShapeRecord& r = s.shapeRecord(id);
   checkMaterial("setFriction", friction, r.restitution);
   r.friction = friction;
+  s.lanesCurrent_ = false;
   for (WorldState::Contact& c : s.contacts_)
     if (c.shapeA == id.index || c.shapeB == id.index)
       c.friction = mixFriction(s.shapes_[static_cast<std::size_t>(c.shapeA)].friction,
@@ -363,6 +365,7 @@ void World::setRestitution(ShapeId id, float restitution) {
   WorldState::ShapeRecord& r = s.shapeRecord(id);
   checkMaterial("setRestitution", r.friction, restitution);
   r.restitution = restitution;
+  s.lanesCurrent_ = false;
   for (WorldState::Contact& c : s.contacts_)
     if (c.shapeA == id.index || c.shapeB == id.index)
       c.restitution = mixRestitution(s.shapes_[static_cast<std::size_t>(c.shapeA)].restitution,

@@ -59,10 +59,12 @@ void WorldState::updatePairs() {
     contactIndex_[key] = static_cast<std::int32_t>(contacts_.size());
     if (!contactListStale_) awakeContacts_.push_back(static_cast<std::int32_t>(contacts_.size()));
     contacts_.push_back(c);
+    lanesCurrent_ = false;
   }
 }
 
 void WorldState::destroyContact(std::size_t index, bool destroyed) {
+  lanesCurrent_ = false;  // another contact moves into `index`
   const Contact& c = contacts_[index];
   if (c.touching && wantsContactEvents(c))
     contactSink().end.push_back({ref(c.shapeA), ref(c.shapeB), destroyed});

@@ -623,6 +623,7 @@ struct ContactSolver::Data {
   std::vector<std::uint32_t> bodyColours;    // per body: the colours its constraints took
   std::vector<std::int32_t> colour;          // per constraint: its colour, kColours: overflow
   std::vector<std::int32_t> partial;         // the batches with an empty lane
+  std::vector<std::uint8_t> partialBatch;    // per batch: whether it is one of them
   int colours = 0, overflow = 0;
   // What the layout was made for: the same constraints again (a resting pile's, step after
   // step) take the same colours and lanes, so the layout is kept.
@@ -724,11 +725,39 @@ bool ContactSolver::prepare(std::span<const ConstraintBodies> constraints, int b
     layoutBatches<4>(constraints, d.colour, perColour, bodyCount, d.batches4, d.constraintLane,
                      d.partial);
   }
+  d.partialBatch.assign(d.lanes == 8 ? d.batches8.size() : d.batches4.size(), 0);
+  for (const std::int32_t bi : d.partial)
+    d.partialBatch[static_cast<std::size_t>(bi)] = 1;
   return false;
 }
 
 void ContactSolver::set(std::size_t i, const ContactConstraint& constraint) {
   atLane(*data_, i, [&](auto& batch, int lane) { writeLane(batch, lane, constraint); });
+}
+
+bool ContactSolver::refresh(std::size_t i, int pointCount, float separation0, float separation1,
+                            float maxPushout) {
+  Data& d = *data_;
+  const auto lane = static_cast<std::size_t>(d.constraintLane[i]);
+  if (d.partialBatch[lane / static_cast<std::size_t>(d.lanes)]) return false;
+  atLane(d, i, [&](auto& b, int l) {
+    b.maxPushout[l] = maxPushout;
+    b.block[l] = pointCount == 2 ? -1 : 0;  // as writeLane: computeMasses decides
+    b.p[0].baseSeparation[l] = separation0;
+    b.p[0].maxNormalImpulse[l] = b.p[0].relativeVelocity[l] = 0.0f;
+    if (b.points == 2) {
+      auto& p = b.p[1];
+      if (pointCount == 2) {
+        p.baseSeparation[l] = separation1;
+      } else {
+        // A missing point's impulses as writeLane leaves them (the solve may leave a zero of
+        // the other sign).
+        p.normalImpulse[l] = p.tangentImpulse[l] = 0.0f;
+      }
+      p.maxNormalImpulse[l] = p.relativeVelocity[l] = 0.0f;
+    }
+  });
+  return true;
 }
 
 ConstraintPoint ContactSolver::point(std::size_t i, int point) const {

@@ -110,6 +110,13 @@ class ContactSolver {
   // straight into the batch's lanes, with no array of constraints in between (copying one and
   // repacking it was a sixth of a pyramid's step).
   void set(std::size_t i, const ContactConstraint& constraint);
+  // Constraint i when its lane, from an earlier set() in this layout, holds it as it is but for
+  // what changes while a manifold is carried (recycled): its points' base separations and its
+  // push-out speed, written here; its impulses are the lane's (the last solve's, which the
+  // caller stored). False, writing nothing, where the lane was cleared since (a batch with an
+  // empty lane): set() it then.
+  bool refresh(std::size_t i, int pointCount, float separation0, float separation1,
+               float maxPushout);
   // After the last set(): each point's lever arms and effective masses, and where a manifold's
   // two points can be solved together, their coupled mass and its inverse; a batch at a time
   // (scalar, with its divisions, this was a tenth of a pyramid's step).

@@ -84,25 +84,18 @@ void WorldState::solve(float dt) {
   applyRestitution();
 }
 
-// What the stack solve finds the piles from, for a prepared constraint, and its points' rows kept
-// in its contact for the next step. The rest of what the rows need waits for a correction
-// (pileDetails): most steps of a still pile have none.
+// What the stack solve finds the piles from, for a prepared constraint: its bodies and their
+// masses (a kept lane's are last step's), then its points' separations (pileTouching), and its
+// points' rows kept in its contact for the next step. The rest of what the rows need waits for a
+// correction (pileDetails): most steps of a still pile have none.
 [[gnu::always_inline]] inline void WorldState::pileConstraint(std::size_t i,
-                                                              const ContactConstraint& cc,
-                                                              Contact& c) {
+                                                              const ContactConstraint& cc) {
   StackSolver::Constraint& sc = stackConstraints_[i];
   sc.slotA = cc.slotA;
   sc.slotB = cc.slotB;
   sc.movesA = constraintBodies_[i].movesA && cc.slotA >= 0;
   sc.movesB = constraintBodies_[i].movesB && cc.slotB >= 0;
   sc.pointCount = cc.pointCount;
-  for (int k = 0; k < cc.pointCount; ++k)
-    sc.separation[k] = cc.points[k].baseSeparation;
-  const std::uint8_t before = sc.touching;  // last step's, of this constraint if the layout is
-  sc.touching =
-      StackSolver::touchingPoints(sc.separation, cc.pointCount, pileLayoutKept_ ? c.stackRows : 0);
-  c.stackRows = sc.touching;
-  pileTouchChanged_ = pileTouchChanged_ || sc.touching != before;
   if (cc.slotA >= 0) {
     slotInvMass_[static_cast<std::size_t>(cc.slotA)] = cc.invMassA;
     slotInvInertia_[static_cast<std::size_t>(cc.slotA)] = cc.invIA;
@@ -111,6 +104,17 @@ void WorldState::solve(float dt) {
     slotInvMass_[static_cast<std::size_t>(cc.slotB)] = cc.invMassB;
     slotInvInertia_[static_cast<std::size_t>(cc.slotB)] = cc.invIB;
   }
+}
+
+[[gnu::always_inline]] inline void WorldState::pileTouching(std::size_t i, Contact& c) {
+  StackSolver::Constraint& sc = stackConstraints_[i];
+  for (int k = 0; k < sc.pointCount; ++k)
+    sc.separation[k] = c.manifold.points[k].separation;
+  const std::uint8_t before = sc.touching;  // last step's, of this constraint if the layout is
+  sc.touching =
+      StackSolver::touchingPoints(sc.separation, sc.pointCount, pileLayoutKept_ ? c.stackRows : 0);
+  c.stackRows = sc.touching;
+  pileTouchChanged_ = pileTouchChanged_ || sc.touching != before;
 }
 
 // Whether the constraints' layout is the one before (pileLayoutKept_, for pileConstraint).
@@ -153,13 +157,17 @@ void WorldState::prepareContacts() {
   tracked_.clear();
   profile_.colours = profile_.overflow = 0;
   profile_.layoutKept = false;
+  profile_.lanesKept = 0;
   profile_.pileBodies = profile_.pileCorrections = 0;
   // The last step's overlap counts back to zero (only the slots it counted: clearing every
   // slot each step was a memset of the awake bodies).
   for (const std::int32_t slot : overlapping_)
     slotOverlaps_[static_cast<std::size_t>(slot)] = 0;
   overlapping_.clear();
-  if (awakeCount_ == 0) return;
+  if (awakeCount_ == 0) {
+    lanesCurrent_ = false;  // the contacts may change before the solver next sees them
+    return;
+  }
   // shared: a body with two contacts overlapping past the slop.
   bool shared = false;
   for (const std::int32_t index : awakeContactList()) {
@@ -198,6 +206,10 @@ void WorldState::prepareContacts() {
   profile_.colours = contactSolver_.colourCount();
   profile_.overflow = contactSolver_.overflowCount();
   profile_.lanes = contactSolver_.laneCount();
+  // A kept layout's lanes hold last step's constraints: a recycled manifold's is written again
+  // only where it changes (below).
+  const bool lanesKept = profile_.layoutKept && lanesCurrent_;
+  laneContacts_.resize(constraintSources_.size());
 
   const bool piles = def_.stackSolveDepth > 0;
   if (piles) {
@@ -210,40 +222,53 @@ void WorldState::prepareContacts() {
   for (std::size_t i = 0; i < constraintSources_.size(); ++i) {
     const ConstraintSource& source = constraintSources_[i];
     Contact& c = contacts_[static_cast<std::size_t>(source.contact)];
+    const std::int32_t slotA = constraintBodies_[i].slotA, slotB = constraintBodies_[i].slotB;
+    // Its share of the push-out speed (see above).
+    float maxPushout = def_.maxPushoutSpeed;
+    if (shared) {
+      const std::int32_t kA = slotA >= 0 ? slotOverlaps_[static_cast<std::size_t>(slotA)] : 0;
+      const std::int32_t kB = slotB >= 0 ? slotOverlaps_[static_cast<std::size_t>(slotB)] : 0;
+      const std::int32_t shares = std::max(kA, kB);
+      if (shares > 1) maxPushout /= static_cast<float>(shares);
+    }
+    const Manifold& m = c.manifold;
+    // A recycled manifold is the made one carried along: its normal and lever arms are those it
+    // was made with (each body has turned by less than recycle's bound since), so a resting
+    // contact's constraint is the same step after step but for its separations and push-out
+    // speed, and its lane, if it still holds it, needs only those; its pile constraint only its
+    // separations (its slots and their masses are last step's). A bouncy one is copied whole
+    // for restitution.
+    if (lanesKept && laneContacts_[i] == source.contact && c.recycled && c.restitution == 0.0f &&
+        contactSolver_.refresh(i, m.pointCount, m.points[0].separation,
+                               m.pointCount == 2 ? m.points[1].separation : 0.0f, maxPushout)) {
+      if (piles) pileTouching(i, c);
+      ++profile_.lanesKept;
+      continue;
+    }
     const Body& a = bodies_[static_cast<std::size_t>(source.bodyA)];
     const Body& b = bodies_[static_cast<std::size_t>(source.bodyB)];
     ContactConstraint cc;
     cc.contact = source.contact;
-    cc.slotA = constraintBodies_[i].slotA;
-    cc.slotB = constraintBodies_[i].slotB;
+    cc.slotA = slotA;
+    cc.slotB = slotB;
     // A sleeping body stays put for this step: it counts as static (and the solver's null body,
     // which static sides share, must never be moved).
-    cc.invMassA = cc.slotA >= 0 ? a.invMass : 0.0f;
-    cc.invIA = cc.slotA >= 0 ? a.invInertia : 0.0f;
-    cc.invMassB = cc.slotB >= 0 ? b.invMass : 0.0f;
-    cc.invIB = cc.slotB >= 0 ? b.invInertia : 0.0f;
-    cc.normal = c.manifold.normal;
+    cc.invMassA = slotA >= 0 ? a.invMass : 0.0f;
+    cc.invIA = slotA >= 0 ? a.invInertia : 0.0f;
+    cc.invMassB = slotB >= 0 ? b.invMass : 0.0f;
+    cc.invIB = slotB >= 0 ? b.invInertia : 0.0f;
+    cc.normal = m.normal;
     cc.friction = c.friction;
     cc.restitution = c.restitution;
-    // Its share of the push-out speed (see above).
-    cc.maxPushout = def_.maxPushoutSpeed;
-    if (shared) {
-      const std::int32_t kA = cc.slotA >= 0 ? slotOverlaps_[static_cast<std::size_t>(cc.slotA)] : 0;
-      const std::int32_t kB = cc.slotB >= 0 ? slotOverlaps_[static_cast<std::size_t>(cc.slotB)] : 0;
-      const std::int32_t shares = std::max(kA, kB);
-      if (shares > 1) cc.maxPushout /= static_cast<float>(shares);
-    }
-    cc.pointCount = c.manifold.pointCount;
-    const Vec2 offsetA = rotate(a.xf.q, a.localCenter), offsetB = rotate(b.xf.q, b.localCenter);
-    // A recycled manifold's anchors are where its points were on each body when it was made:
-    // turned with the bodies since.
-    const Rot dqA = c.recycled ? invMul(c.madeQA, a.xf.q) : Rot{};
-    const Rot dqB = c.recycled ? invMul(c.madeQB, b.xf.q) : Rot{};
+    cc.maxPushout = maxPushout;
+    cc.pointCount = m.pointCount;
+    // The lever arms from the centres of mass as the manifold was made.
+    const Vec2 offsetA = rotate(c.madeQA, a.localCenter), offsetB = rotate(c.madeQB, b.localCenter);
     for (int k = 0; k < cc.pointCount; ++k) {
-      const ManifoldPoint& mp = c.manifold.points[k];
+      const ManifoldPoint& mp = m.points[k];
       ConstraintPoint& p = cc.points[k];
-      p.rA = (c.recycled ? rotate(dqA, mp.anchorA) : mp.anchorA) - offsetA;
-      p.rB = (c.recycled ? rotate(dqB, mp.anchorB) : mp.anchorB) - offsetB;
+      p.rA = mp.anchorA - offsetA;
+      p.rB = mp.anchorB - offsetB;
       p.baseSeparation = mp.separation;
       p.normalImpulse = c.normalImpulse[k];
       p.tangentImpulse = c.tangentImpulse[k];
@@ -253,13 +278,18 @@ void WorldState::prepareContacts() {
       p.relativeVelocity = 0.0f;
     }
     contactSolver_.set(i, cc);
-    if (piles) pileConstraint(i, cc, c);
+    laneContacts_[i] = source.contact;
+    if (piles) {
+      pileConstraint(i, cc);
+      pileTouching(i, c);
+    }
     if (cc.restitution != 0.0f) {
       bouncy_.push_back(cc);
       bouncyIndex_.push_back(static_cast<std::int32_t>(i));
     }
   }
   contactSolver_.computeMasses();
+  lanesCurrent_ = true;
   if (!bouncy_.empty()) prepareBounceGroups();
   if (piles) {
     // The solve's compliance: a thousandth of each row's own effective mass inverse, enough to

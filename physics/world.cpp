@@ -281,6 +281,7 @@ void World::setStepping(int substeps, Integrator integrator) {
       c.tangentImpulse[k] *= scale;
     }
   s.def_.substeps = substeps;
+  s.lanesCurrent_ = false;  // the lanes hold the impulses before the scaling
   s.def_.integrator = integrator;
 }
 

@@ -226,6 +226,9 @@ struct Profile {
   int lanes = 0;  // constraints solved side by side: 4 or 8 (0 before the first solve)
   // The same constraints as the step before (a resting pile's): their colouring and lanes kept.
   bool layoutKept = false;
+  // Of those, the constraints whose lanes were kept too (a recycled manifold's, rewritten only
+  // where it changes: its separations).
+  int lanesKept = 0;
   // The last narrowphase: touching contacts whose manifold was recycled (contactRecycleDistance)
   // and those made again.
   int recycled = 0, made = 0;

@@ -237,7 +237,8 @@ class WorldState {
   void advancePileLayout();
   void correctPiles();
   void pileDetails();
-  void pileConstraint(std::size_t i, const ContactConstraint& cc, Contact& c);
+  void pileConstraint(std::size_t i, const ContactConstraint& cc);
+  void pileTouching(std::size_t i, Contact& c);
   void measureContactWork();
   void limitBounceEnergy();
   void accelerations(std::span<const double> q, std::span<const float> v, double t,
@@ -376,6 +377,11 @@ class WorldState {
   std::vector<std::int32_t> slotParent_, rootGroup_;  // per awake slot, while grouping
   std::vector<std::uint8_t> slotDegree_;
   ContactSolver contactSolver_;
+  // Per constraint, the contact its lane was last set() for; current (lanesCurrent_) until
+  // something a lane is made from changes other than a manifold: a contact made or destroyed,
+  // a body's mass, a material, the substeps (prepareContacts).
+  std::vector<std::int32_t> laneContacts_;
+  bool lanesCurrent_ = false;
   // The direct solve of piles (WorldDef::stackSolveDepth): its constraints in prepare's order,
   // the impulses it exchanges with the contact solver, and the slots' inverse masses (written for
   // the slots of constraints only: it reads no others).

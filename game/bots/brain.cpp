@@ -504,8 +504,12 @@ PlayerInput decide(MatchState& s, std::size_t i) {
       if (distance > kFar) move = toward;
       if (distance < kNear) move = -toward;
       // These steps ignore the grid: none from plain ground into a hurt zone's margin (a
-      // sidestep turns the other way, else the bot stands).
-      if (intoHurt(s, at, move)) {
+      // sidestep turns the other way, else the bot stands); in the margin already (pushed there,
+      // or a sidestep from a cell at its edge), the bot fights while it walks out to the nearest
+      // clear ground (sidesteps from there took one 40 ticks into the arena's zone).
+      if (const rc::Vec2 clear = clearOfHurt(s.nav, at); clear != at) {
+        move = steer(s, i, at, clear);
+      } else if (intoHurt(s, at, move)) {
         const bool strafing = distance <= kFar && distance >= kNear;
         if (strafing) mind.strafe = -mind.strafe;
         move = strafing && !intoHurt(s, at, -move) ? -move : rc::Vec2{};

@@ -21,7 +21,7 @@ namespace game {
 // Bumped when a change to the engine or the game moves the hashes of recorded matches on
 // purpose (and the bundled sessions are recorded again): a replay of an older recording is
 // refused with a clear message instead of failing at its first hash.
-inline constexpr std::uint32_t kSimulationVersion = 9;
+inline constexpr std::uint32_t kSimulationVersion = 10;
 
 // The program's version, written into every recording (informative: kSimulationVersion decides).
 inline constexpr const char* kProgramVersion = "ricochet 0.1.0";

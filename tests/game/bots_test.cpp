@@ -933,9 +933,10 @@ TEST(Navigation, HurtZonesCostMoreAndAreWalkedRound) {
 // The bundled arena's hurt zone, 16 bots for a minute in each of six matches (seeds 1-6): the
 // actors inside it (the query the rules hurt them by) add up to at most a quarter of an
 // actor-second a match. Before the grid knew hurt zones, seeds 1-3 spent 10-16 actor-seconds in
-// it every three minutes. These six: 41 actor-ticks; 153 before bots kept their steps off the
-// grid and their stale routes out of it (strafing, a chase's end, a walk pushed off its route),
-// 205 before a grenade's step back did.
+// it every three minutes. These six: 17 actor-ticks; 93 (58 in one match: two bots fighting at the
+// zone's edge, one then taking cover there) before a fighting bot in its margin walked out of
+// it; 153 before bots kept their steps off the grid and their stale routes out of it (strafing,
+// a chase's end, a walk pushed off its route), 205 before a grenade's step back did.
 TEST(Navigation, BotsKeepOutOfTheArenasHurtZone) {
   const game::Level arena = game::loadLevel(level_test::levelPath("arena.tmj"));
   std::int64_t inside = 0;

@@ -46,7 +46,8 @@ struct Batch {
   F invMassA, invIA, invMassB, invIB;
   F nx, ny, friction, maxPushout;
   F k11, k12, k22, i11, i12, i22;
-  M block;  // the lane's two points may be solved together
+  M two;    // the lane has two points (writeLane)
+  M block;  // the lane's two points may be solved together (computeMasses)
   PointLanes<N> p[2];
   int points;  // the most points of any lane: with 1 (circles), the second point's lanes are
                // skipped
@@ -506,7 +507,7 @@ void writeLane(Batch<N>& b, int l, const ContactConstraint& cc) {
   b.ny[l] = cc.normal.y;
   b.friction[l] = cc.friction;
   b.maxPushout[l] = cc.maxPushout;
-  b.block[l] = cc.pointCount == 2 ? -1 : 0;
+  b.two[l] = cc.pointCount == 2 ? -1 : 0;
   for (int k = 0; k < b.points; ++k) {
     PointLanes<N>& p = b.p[k];
     const bool set = k < cc.pointCount;
@@ -530,7 +531,7 @@ template <int N>
 RC_INLINE void massesBatch(Batch<N>& c) {
   using F = typename simd::Lanes<N>::F;
   using M = typename simd::Lanes<N>::M;
-  const M two = c.block;
+  const M two = c.two;
   const F m = c.invMassA + c.invMassB;
   const F tx = c.ny, ty = -c.nx;
   F kNormal[2];
@@ -588,14 +589,14 @@ ConstraintPoint readLane(const Batch<N>& b, int l, int k) {
   return out;
 }
 
-void masses4(std::span<Batch<4>> batches) {
-  for (Batch<4>& b : batches)
-    massesBatch(b);
+void masses4(std::span<Batch<4>> batches, const std::uint8_t* stale) {
+  for (std::size_t i = 0; i < batches.size(); ++i)
+    if (stale[i]) massesBatch(batches[i]);
 }
 #if RC_HAVE_AVX2_PATHS
-[[gnu::target("avx2")]] void masses8(std::span<Batch<8>> batches) {
-  for (Batch<8>& b : batches)
-    massesBatch(b);
+[[gnu::target("avx2")]] void masses8(std::span<Batch<8>> batches, const std::uint8_t* stale) {
+  for (std::size_t i = 0; i < batches.size(); ++i)
+    if (stale[i]) massesBatch(batches[i]);
 }
 #endif
 
@@ -624,6 +625,8 @@ struct ContactSolver::Data {
   std::vector<std::int32_t> colour;          // per constraint: its colour, kColours: overflow
   std::vector<std::int32_t> partial;         // the batches with an empty lane
   std::vector<std::uint8_t> partialBatch;    // per batch: whether it is one of them
+  // Per batch: a lane set() since its masses were computed (a refreshed lane's are as they were).
+  std::vector<std::uint8_t> staleMasses;
   int colours = 0, overflow = 0;
   // What the layout was made for: the same constraints again (a resting pile's, step after
   // step) take the same colours and lanes, so the layout is kept.
@@ -726,13 +729,16 @@ bool ContactSolver::prepare(std::span<const ConstraintBodies> constraints, int b
                      d.partial);
   }
   d.partialBatch.assign(d.lanes == 8 ? d.batches8.size() : d.batches4.size(), 0);
+  d.staleMasses.assign(d.partialBatch.size(), 1);
   for (const std::int32_t bi : d.partial)
     d.partialBatch[static_cast<std::size_t>(bi)] = 1;
   return false;
 }
 
 void ContactSolver::set(std::size_t i, const ContactConstraint& constraint) {
-  atLane(*data_, i, [&](auto& batch, int lane) { writeLane(batch, lane, constraint); });
+  Data& d = *data_;
+  d.staleMasses[static_cast<std::size_t>(d.constraintLane[i] / d.lanes)] = 1;
+  atLane(d, i, [&](auto& batch, int lane) { writeLane(batch, lane, constraint); });
 }
 
 bool ContactSolver::refresh(std::size_t i, int pointCount, float separation0, float separation1,
@@ -742,7 +748,6 @@ bool ContactSolver::refresh(std::size_t i, int pointCount, float separation0, fl
   if (d.partialBatch[lane / static_cast<std::size_t>(d.lanes)]) return false;
   atLane(d, i, [&](auto& b, int l) {
     b.maxPushout[l] = maxPushout;
-    b.block[l] = pointCount == 2 ? -1 : 0;  // as writeLane: computeMasses decides
     b.p[0].baseSeparation[l] = separation0;
     b.p[0].maxNormalImpulse[l] = b.p[0].relativeVelocity[l] = 0.0f;
     if (b.points == 2) {
@@ -805,11 +810,14 @@ void ContactSolver::computeMasses() {
   Data& d = *data_;
 #if RC_HAVE_AVX2_PATHS
   if (d.lanes == 8) {
-    masses8(d.batches8);
-    return;
+    masses8(d.batches8, d.staleMasses.data());
+  } else {
+    masses4(d.batches4, d.staleMasses.data());
   }
+#else
+  masses4(d.batches4, d.staleMasses.data());
 #endif
-  masses4(d.batches4);
+  std::fill(d.staleMasses.begin(), d.staleMasses.end(), 0);
 }
 
 void ContactSolver::warmStart(std::span<SolverBody> bodies, std::span<const float> free) {

@@ -119,7 +119,8 @@ class ContactSolver {
                float maxPushout);
   // After the last set(): each point's lever arms and effective masses, and where a manifold's
   // two points can be solved together, their coupled mass and its inverse; a batch at a time
-  // (scalar, with its divisions, this was a tenth of a pyramid's step).
+  // (scalar, with its divisions, this was a tenth of a pyramid's step), and only the batches a
+  // set() wrote to since (a refreshed lane's masses are as they were).
   void computeMasses();
   // Applies the carried impulses. With `free` (the bodies' velocities before any warm start:
   // vx, vy and w of each body, the null body's zeros after them, and one float more, read but

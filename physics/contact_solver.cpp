@@ -589,14 +589,21 @@ ConstraintPoint readLane(const Batch<N>& b, int l, int k) {
   return out;
 }
 
-void masses4(std::span<Batch<4>> batches, const std::uint8_t* stale) {
+// The stale batches' masses, each batch's flag cleared as it is done.
+template <int N>
+RC_INLINE void staleMasses(std::span<Batch<N>> batches, std::uint8_t* stale) {
   for (std::size_t i = 0; i < batches.size(); ++i)
-    if (stale[i]) massesBatch(batches[i]);
+    if (stale[i]) {
+      massesBatch(batches[i]);
+      stale[i] = 0;
+    }
+}
+void masses4(std::span<Batch<4>> batches, std::uint8_t* stale) {
+  staleMasses(batches, stale);
 }
 #if RC_HAVE_AVX2_PATHS
-[[gnu::target("avx2")]] void masses8(std::span<Batch<8>> batches, const std::uint8_t* stale) {
-  for (std::size_t i = 0; i < batches.size(); ++i)
-    if (stale[i]) massesBatch(batches[i]);
+[[gnu::target("avx2")]] void masses8(std::span<Batch<8>> batches, std::uint8_t* stale) {
+  staleMasses(batches, stale);
 }
 #endif
 
@@ -811,13 +818,10 @@ void ContactSolver::computeMasses() {
 #if RC_HAVE_AVX2_PATHS
   if (d.lanes == 8) {
     masses8(d.batches8, d.staleMasses.data());
-  } else {
-    masses4(d.batches4, d.staleMasses.data());
+    return;
   }
-#else
-  masses4(d.batches4, d.staleMasses.data());
 #endif
-  std::fill(d.staleMasses.begin(), d.staleMasses.end(), 0);
+  masses4(d.batches4, d.staleMasses.data());
 }
 
 void ContactSolver::warmStart(std::span<SolverBody> bodies, std::span<const float> free) {

@@ -280,8 +280,8 @@ void World::setStepping(int substeps, Integrator integrator) {
       c.normalImpulse[k] *= scale;
       c.tangentImpulse[k] *= scale;
     }
-  s.def_.substeps = substeps;
   s.lanesCurrent_ = false;  // the lanes hold the impulses before the scaling
+  s.def_.substeps = substeps;
   s.def_.integrator = integrator;
 }
 

@@ -177,14 +177,15 @@ TEST(Snapshot, Synctest) {
 TEST(Snapshot, KeptSolverLayoutGivesTheBitsOfANewOne) {
   rc::WorldDef def;
   def.enableSleep = false;
-  std::vector<BodyId> boxes;
-  auto pyramid = [&def, &boxes] {
+  auto pyramid = [&def](std::vector<BodyId>* boxes = nullptr) {
     auto w = std::make_unique<rc::World>(def);
     w->createShape(w->createBody({}), rc::makeBox(20, 0.5f, {0, -0.5f}));
-    boxes = pyramidOfBoxes(*w, 8);
+    std::vector<BodyId> made = pyramidOfBoxes(*w, 8);
+    if (boxes != nullptr) *boxes = std::move(made);
     return w;
   };
-  const std::unique_ptr<rc::World> kept = pyramid();
+  std::vector<BodyId> boxes;
+  const std::unique_ptr<rc::World> kept = pyramid(&boxes);
   int keptSteps = 0, keptLanes = 0, corrections = 0, whole = 0;
   int substeps = def.substeps;
   for (int k = 0; k < 240; ++k) {

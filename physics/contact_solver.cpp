@@ -441,7 +441,7 @@ template <int N>
 void layoutBatches(std::span<const ConstraintBodies> constraints,
                    std::span<const std::int32_t> colour, const int (&perColour)[kColours + 1],
                    int bodyCount, std::vector<Batch<N>>& batches,
-                   std::vector<std::int32_t>& constraintLane, std::vector<std::int32_t>& partial) {
+                   std::vector<std::int32_t>& constraintLane, std::vector<std::uint8_t>& partial) {
   int firstBatch[kColours + 2] = {};
   for (int k = 0; k < kColours; ++k)
     firstBatch[k + 1] = firstBatch[k] + (perColour[k] + N - 1) / N;
@@ -458,13 +458,12 @@ void layoutBatches(std::span<const ConstraintBodies> constraints,
   }
   // The batches with an empty lane: a colour's last when its count is not a multiple of N,
   // and every overflow batch (one lane taken).
-  partial.clear();
+  partial.assign(batchCount, 0);
   for (int k = 0; k < kColours; ++k)
-    if (perColour[k] % N != 0) partial.push_back(firstBatch[k + 1] - 1);
-  for (int bi = firstBatch[kColours]; bi < firstBatch[kColours + 1]; ++bi)
-    partial.push_back(bi);
-  for (const std::int32_t bi : partial)
-    batches[static_cast<std::size_t>(bi)] = Batch<N>{};
+    if (perColour[k] % N != 0) partial[static_cast<std::size_t>(firstBatch[k + 1] - 1)] = 1;
+  std::fill(partial.begin() + firstBatch[kColours], partial.end(), 1);
+  for (std::size_t bi = 0; bi < batchCount; ++bi)
+    if (partial[bi]) batches[bi] = Batch<N>{};
   for (Batch<N>& b : batches) {
     b.points = 1;
     std::fill(std::begin(b.a), std::end(b.a), bodyCount);
@@ -484,9 +483,10 @@ void layoutBatches(std::span<const ConstraintBodies> constraints,
 // bodies and the point count. The solve may leave zeros of either sign in an empty lane; a
 // layout used again starts from the same bits as a new one.
 template <int N>
-void clearPartial(std::vector<Batch<N>>& batches, std::span<const std::int32_t> partial) {
-  for (const std::int32_t bi : partial) {
-    Batch<N>& b = batches[static_cast<std::size_t>(bi)];
+void clearPartial(std::vector<Batch<N>>& batches, std::span<const std::uint8_t> partial) {
+  for (std::size_t bi = 0; bi < batches.size(); ++bi) {
+    if (!partial[bi]) continue;
+    Batch<N>& b = batches[bi];
     Batch<N> fresh{};
     std::copy(std::begin(b.a), std::end(b.a), std::begin(fresh.a));
     std::copy(std::begin(b.b), std::end(b.b), std::begin(fresh.b));
@@ -496,7 +496,7 @@ void clearPartial(std::vector<Batch<N>>& batches, std::span<const std::int32_t> 
 }
 
 // One constraint into its lane: what the caller sets, and a missing second point as zeros
-// where the batch has two. `block` holds "has two points" until computeMasses.
+// where the batch has two.
 template <int N>
 void writeLane(Batch<N>& b, int l, const ContactConstraint& cc) {
   b.invMassA[l] = cc.invMassA;
@@ -630,8 +630,7 @@ struct ContactSolver::Data {
   std::vector<std::int32_t> constraintLane;  // per constraint: batch * lanes + lane
   std::vector<std::uint32_t> bodyColours;    // per body: the colours its constraints took
   std::vector<std::int32_t> colour;          // per constraint: its colour, kColours: overflow
-  std::vector<std::int32_t> partial;         // the batches with an empty lane
-  std::vector<std::uint8_t> partialBatch;    // per batch: whether it is one of them
+  std::vector<std::uint8_t> partial;         // per batch: whether it has an empty lane
   // Per batch: a lane set() since its masses were computed (a refreshed lane's are as they were).
   std::vector<std::uint8_t> staleMasses;
   int colours = 0, overflow = 0;
@@ -735,10 +734,7 @@ bool ContactSolver::prepare(std::span<const ConstraintBodies> constraints, int b
     layoutBatches<4>(constraints, d.colour, perColour, bodyCount, d.batches4, d.constraintLane,
                      d.partial);
   }
-  d.partialBatch.assign(d.lanes == 8 ? d.batches8.size() : d.batches4.size(), 0);
-  d.staleMasses.assign(d.partialBatch.size(), 1);
-  for (const std::int32_t bi : d.partial)
-    d.partialBatch[static_cast<std::size_t>(bi)] = 1;
+  d.staleMasses.assign(d.partial.size(), 1);
   return false;
 }
 
@@ -752,7 +748,7 @@ bool ContactSolver::refresh(std::size_t i, int pointCount, float separation0, fl
                             float maxPushout) {
   Data& d = *data_;
   const auto lane = static_cast<std::size_t>(d.constraintLane[i]);
-  if (d.partialBatch[lane / static_cast<std::size_t>(d.lanes)]) return false;
+  if (d.partial[lane / static_cast<std::size_t>(d.lanes)]) return false;
   atLane(d, i, [&](auto& b, int l) {
     b.maxPushout[l] = maxPushout;
     b.p[0].baseSeparation[l] = separation0;

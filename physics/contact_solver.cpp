@@ -12,6 +12,7 @@
 #include <cfloat>
 #include <cstddef>
 #include <cstring>
+#include <stdexcept>
 #include <vector>
 
 #include "physics/constants.h"
@@ -42,7 +43,10 @@ template <int N>
 struct Batch {
   using F = typename simd::Lanes<N>::F;
   using M = typename simd::Lanes<N>::M;
-  std::int32_t a[N], b[N];
+  // Each lane's bodies as byte offsets into the solver's bodies (index * sizeof(SolverBody)):
+  // a row's address is then one load and an add, where an index took a sign extension and a
+  // shift more, 48 loads a batch (a tenth of a two-point batch's solve instructions).
+  std::uint32_t a[N], b[N];
   F invMassA, invIA, invMassB, invIB;
   F nx, ny, friction, maxPushout;
   F k11, k12, k22, i11, i12, i22;
@@ -86,6 +90,15 @@ RC_INLINE void transpose(simd::F8& a, simd::F8& b, simd::F8& c, simd::F8& d) {
   d = __builtin_shufflevector(ab23, cd23, 2, 3, 10, 11, 6, 7, 14, 15);
 }
 
+// The body at a lane's byte offset (Batch::a, Batch::b).
+RC_INLINE const SolverBody& bodyAt(const SolverBody* bodies, std::uint32_t offset) {
+  return *reinterpret_cast<const SolverBody*>(reinterpret_cast<const char*>(bodies) + offset);
+}
+RC_INLINE SolverBody& bodyAt(SolverBody* bodies, std::uint32_t offset) {
+  return *reinterpret_cast<SolverBody*>(reinterpret_cast<char*>(bodies) + offset);
+}
+constexpr std::uint32_t kBodyBytes = sizeof(SolverBody);
+
 // A SolverBody's first half (v, w, unused) or second half (dp, dq) as one vector.
 RC_INLINE simd::F loadHalf(const SolverBody& b, int half) {
   simd::F row;
@@ -100,18 +113,18 @@ RC_INLINE void storeHalf(SolverBody& b, simd::F row) {
 // k + 4's half beside it.
 template <int N>
 RC_INLINE typename simd::Lanes<N>::F loadRow(const SolverBody* bodies,
-                                             const std::int32_t (&index)[N], int k, int half) {
-  const simd::F low = loadHalf(bodies[index[k]], half);
+                                             const std::uint32_t (&index)[N], int k, int half) {
+  const simd::F low = loadHalf(bodyAt(bodies, index[k]), half);
   if constexpr (N == 4) {
     return low;
   } else {
-    const simd::F high = loadHalf(bodies[index[k + 4]], half);
+    const simd::F high = loadHalf(bodyAt(bodies, index[k + 4]), half);
     return __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7);
   }
 }
 
 template <int N, bool withMotion>
-RC_INLINE BodyLanes<N> gather(const SolverBody* bodies, const std::int32_t (&index)[N]) {
+RC_INLINE BodyLanes<N> gather(const SolverBody* bodies, const std::uint32_t (&index)[N]) {
   BodyLanes<N> out;
   out.vx = loadRow(bodies, index, 0, 0);
   out.vy = loadRow(bodies, index, 1, 0);
@@ -130,15 +143,16 @@ RC_INLINE BodyLanes<N> gather(const SolverBody* bodies, const std::int32_t (&ind
 
 // Body k's velocity from rows of three floats a body (vx, vy, w), loaded as four (the fourth,
 // the next body's vx or the padding after the last row, is not used), and with eight lanes body
-// k + 4's beside it: row k of the matrix transpose() turns into lanes.
-RC_INLINE simd::F loadVelocityRow(const float* rows, std::int32_t body) {
+// k + 4's beside it: row k of the matrix transpose() turns into lanes. (offset: the lane's
+// SolverBody offset.)
+RC_INLINE simd::F loadVelocityRow(const float* rows, std::uint32_t offset) {
   simd::F row;
-  std::memcpy(&row, rows + 3 * static_cast<std::ptrdiff_t>(body), sizeof row);
+  std::memcpy(&row, rows + 3 * static_cast<std::size_t>(offset / kBodyBytes), sizeof row);
   return row;
 }
 template <int N>
 RC_INLINE typename simd::Lanes<N>::F loadVelocityRow(const float* rows,
-                                                     const std::int32_t (&index)[N], int k) {
+                                                     const std::uint32_t (&index)[N], int k) {
   const simd::F low = loadVelocityRow(rows, index[k]);
   if constexpr (N == 4) {
     return low;
@@ -148,7 +162,7 @@ RC_INLINE typename simd::Lanes<N>::F loadVelocityRow(const float* rows,
   }
 }
 template <int N>
-RC_INLINE BodyLanes<N> gatherVelocities(const float* rows, const std::int32_t (&index)[N]) {
+RC_INLINE BodyLanes<N> gatherVelocities(const float* rows, const std::uint32_t (&index)[N]) {
   BodyLanes<N> out;
   out.vx = loadVelocityRow(rows, index, 0);
   out.vy = loadVelocityRow(rows, index, 1);
@@ -161,19 +175,21 @@ RC_INLINE BodyLanes<N> gatherVelocities(const float* rows, const std::int32_t (&
 // Lanes are written in order; lanes sharing a body (the null body, a kinematic body) hold the
 // same unchanged velocity, so the order does not matter. Only the first half is written.
 template <int N, class F>
-RC_INLINE void scatter(SolverBody* bodies, const std::int32_t (&index)[N], F vx, F vy, F w, F pad) {
+RC_INLINE void scatter(SolverBody* bodies, const std::uint32_t (&index)[N], F vx, F vy, F w,
+                       F pad) {
   transpose(vx, vy, w, pad);
   const F rows[4] = {vx, vy, w, pad};
   for (int k = 0; k < 4; ++k) {
     if constexpr (N == 4) {
-      storeHalf(bodies[index[k]], rows[k]);
+      storeHalf(bodyAt(bodies, index[k]), rows[k]);
     } else {
-      storeHalf(bodies[index[k]], __builtin_shufflevector(rows[k], rows[k], 0, 1, 2, 3));
+      storeHalf(bodyAt(bodies, index[k]), __builtin_shufflevector(rows[k], rows[k], 0, 1, 2, 3));
     }
   }
   if constexpr (N == 8) {
     for (int k = 0; k < 4; ++k)
-      storeHalf(bodies[index[k + 4]], __builtin_shufflevector(rows[k], rows[k], 4, 5, 6, 7));
+      storeHalf(bodyAt(bodies, index[k + 4]),
+                __builtin_shufflevector(rows[k], rows[k], 4, 5, 6, 7));
   }
 }
 
@@ -442,6 +458,7 @@ void layoutBatches(std::span<const ConstraintBodies> constraints,
                    std::span<const std::int32_t> colour, const int (&perColour)[kColours + 1],
                    int bodyCount, std::vector<Batch<N>>& batches,
                    std::vector<std::int32_t>& constraintLane, std::vector<std::uint8_t>& partial) {
+  const std::uint32_t nullBody = static_cast<std::uint32_t>(bodyCount) * kBodyBytes;
   int firstBatch[kColours + 2] = {};
   for (int k = 0; k < kColours; ++k)
     firstBatch[k + 1] = firstBatch[k] + (perColour[k] + N - 1) / N;
@@ -466,15 +483,15 @@ void layoutBatches(std::span<const ConstraintBodies> constraints,
     if (partial[bi]) batches[bi] = Batch<N>{};
   for (Batch<N>& b : batches) {
     b.points = 1;
-    std::fill(std::begin(b.a), std::end(b.a), bodyCount);
-    std::fill(std::begin(b.b), std::end(b.b), bodyCount);
+    std::fill(std::begin(b.a), std::end(b.a), nullBody);
+    std::fill(std::begin(b.b), std::end(b.b), nullBody);
   }
   for (std::size_t i = 0; i < constraints.size(); ++i) {
     const ConstraintBodies& cb = constraints[i];
     Batch<N>& b = batches[static_cast<std::size_t>(constraintLane[i] / N)];
     const int l = constraintLane[i] % N;
-    b.a[l] = cb.slotA >= 0 ? cb.slotA : bodyCount;
-    b.b[l] = cb.slotB >= 0 ? cb.slotB : bodyCount;
+    b.a[l] = cb.slotA >= 0 ? static_cast<std::uint32_t>(cb.slotA) * kBodyBytes : nullBody;
+    b.b[l] = cb.slotB >= 0 ? static_cast<std::uint32_t>(cb.slotB) * kBodyBytes : nullBody;
     b.points = std::max(b.points, cb.pointCount);
   }
 }
@@ -676,6 +693,9 @@ int ContactSolver::widestLanes() {
 bool ContactSolver::prepare(std::span<const ConstraintBodies> constraints, int bodyCount,
                             int maxLanes) {
   Data& d = *data_;
+  // The batches address bodies by 32-bit byte offsets, the null body's included.
+  if (static_cast<std::uint64_t>(bodyCount) + 1 > UINT32_MAX / kBodyBytes)
+    throw std::length_error("contact solver: more than 2^27 awake bodies");
   const int lanes = maxLanes >= 8 ? widestLanes() : 4;
   // Compared as bytes (every byte of one is a field or zeroed padding): field by field it was
   // two thirds of this function in a resting pile, every step.

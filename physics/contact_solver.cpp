@@ -36,6 +36,9 @@ struct PointLanes {
   F rAx, rAy, rBx, rBy, rnA, rnB, rtA, rtB;
   F baseSeparation, normalMass, tangentMass;
   F normalImpulse, tangentImpulse, maxNormalImpulse, relativeVelocity;
+  // The separation the last relax pass measured: the next substep's solve pass reads it, for no
+  // position changes in between (ContactSolver::solve's sameMotion).
+  F separation;
 };
 
 // N constraints, structure of arrays. Empty lanes have zero masses and point at the null body.
@@ -287,12 +290,17 @@ RC_INLINE typename simd::Lanes<N>::F alone(const PointLanes<N>& p, typename simd
   return select(r.held, vmin(total, p.normalImpulse), total);
 }
 
-template <int N, bool useBias>
+// Where a pass's separations come from: worked out from the bodies' motion, worked out and kept
+// (the relax pass), or the kept ones (a solve pass with the motion the relax pass before saw).
+enum class Separation { measure, measureAndKeep, kept };
+
+template <int N, bool useBias, Separation from>
 RC_INLINE void solveBatch(Batch<N>& c, SolverBody* bodies, const ContactSoftness& soft) {
   using F = typename simd::Lanes<N>::F;
   using M = typename simd::Lanes<N>::M;
   using simd::splat;
-  const BodyLanes<N> A = gather<N, true>(bodies, c.a), B = gather<N, true>(bodies, c.b);
+  constexpr bool measure = from != Separation::kept;
+  const BodyLanes<N> A = gather<N, measure>(bodies, c.a), B = gather<N, measure>(bodies, c.b);
   Velocities<N> v{A.vx, A.vy, A.w, B.vx, B.vy, B.w};
   const M biasLanes = useBias ? ~M{} : M{};
 
@@ -301,14 +309,20 @@ RC_INLINE void solveBatch(Batch<N>& c, SolverBody* bodies, const ContactSoftness
   // (deeper, with the push-out bias; in the relax pass rigid too).
   PointRegime<N> regime[2];
   for (int k = 0; k < c.points; ++k) {
-    const PointLanes<N>& p = c.p[k];
+    PointLanes<N>& p = c.p[k];
     PointRegime<N>& r = regime[k];
     // Separation now, from how far the bodies moved and turned since the manifold was made.
-    const F rAx = A.dqc * p.rAx - A.dqs * p.rAy, rAy = A.dqs * p.rAx + A.dqc * p.rAy;
-    const F rBx = B.dqc * p.rBx - B.dqs * p.rBy, rBy = B.dqs * p.rBx + B.dqc * p.rBy;
-    const F dx = (B.dpx - A.dpx) + (rBx - p.rBx) - (rAx - p.rAx);
-    const F dy = (B.dpy - A.dpy) + (rBy - p.rBy) - (rAy - p.rAy);
-    const F s = dx * c.nx + dy * c.ny + p.baseSeparation;
+    F s;
+    if constexpr (measure) {
+      const F rAx = A.dqc * p.rAx - A.dqs * p.rAy, rAy = A.dqs * p.rAx + A.dqc * p.rAy;
+      const F rBx = B.dqc * p.rBx - B.dqs * p.rBy, rBy = B.dqs * p.rBx + B.dqc * p.rBy;
+      const F dx = (B.dpx - A.dpx) + (rBx - p.rBx) - (rAx - p.rAx);
+      const F dy = (B.dpy - A.dpy) + (rBy - p.rBy) - (rAy - p.rAy);
+      s = dx * c.nx + dy * c.ny + p.baseSeparation;
+      if constexpr (from == Separation::measureAndKeep) p.separation = s;
+    } else {
+      s = p.separation;
+    }
     const M apart = s > 0.0f;
     r.isSoft = ~apart & (s <= -kLinearSlop) & biasLanes;
     // The push-out cap bounds how fast overlapping points part, not what a contact carries: on
@@ -409,34 +423,37 @@ RC_INLINE void warmStartAll(std::span<Batch<N>> batches, SolverBody* bodies, con
   for (Batch<N>& b : batches)
     warmStartBatch(b, bodies, free);
 }
-template <int N, bool useBias>
+template <int N, bool useBias, Separation from>
 RC_INLINE void solvePass(std::span<Batch<N>> batches, SolverBody* bodies,
                          const ContactSoftness& soft, bool backward) {
   if (backward) {
     for (std::size_t i = batches.size(); i-- > 0;)
-      solveBatch<N, useBias>(batches[i], bodies, soft);
+      solveBatch<N, useBias, from>(batches[i], bodies, soft);
   } else {
     for (Batch<N>& b : batches)
-      solveBatch<N, useBias>(b, bodies, soft);
+      solveBatch<N, useBias, from>(b, bodies, soft);
   }
 }
 // The pass with bias and the relax pass compiled apart: in the relax pass the regimes are
 // constants (nothing soft, no push), and their arithmetic folds away (3% of a pyramid's step).
+// The relax pass keeps its separations for the next solve pass.
 template <int N>
 RC_INLINE void solveAll(std::span<Batch<N>> batches, SolverBody* bodies,
-                        const ContactSoftness& soft, bool useBias, bool backward) {
-  if (useBias)
-    solvePass<N, true>(batches, bodies, soft, backward);
+                        const ContactSoftness& soft, bool useBias, bool backward, bool sameMotion) {
+  if (!useBias)
+    solvePass<N, false, Separation::measureAndKeep>(batches, bodies, soft, backward);
+  else if (sameMotion)
+    solvePass<N, true, Separation::kept>(batches, bodies, soft, backward);
   else
-    solvePass<N, false>(batches, bodies, soft, backward);
+    solvePass<N, true, Separation::measure>(batches, bodies, soft, backward);
 }
 
 void warmStart4(std::span<Batch<4>> batches, SolverBody* bodies, const float* free) {
   warmStartAll(batches, bodies, free);
 }
 void solve4(std::span<Batch<4>> batches, SolverBody* bodies, const ContactSoftness& soft,
-            bool useBias, bool backward) {
-  solveAll(batches, bodies, soft, useBias, backward);
+            bool useBias, bool backward, bool sameMotion) {
+  solveAll(batches, bodies, soft, useBias, backward, sameMotion);
 }
 
 #if RC_HAVE_AVX2_PATHS
@@ -445,8 +462,9 @@ void solve4(std::span<Batch<4>> batches, SolverBody* bodies, const ContactSoftne
   warmStartAll(batches, bodies, free);
 }
 [[gnu::target("avx2")]] void solve8(std::span<Batch<8>> batches, SolverBody* bodies,
-                                    const ContactSoftness& soft, bool useBias, bool backward) {
-  solveAll(batches, bodies, soft, useBias, backward);
+                                    const ContactSoftness& soft, bool useBias, bool backward,
+                                    bool sameMotion) {
+  solveAll(batches, bodies, soft, useBias, backward, sameMotion);
 }
 #endif
 
@@ -853,15 +871,15 @@ void ContactSolver::warmStart(std::span<SolverBody> bodies, std::span<const floa
 }
 
 void ContactSolver::solve(std::span<SolverBody> bodies, const ContactSoftness& soft, bool useBias,
-                          bool backward) {
+                          bool backward, bool sameMotion) {
   Data& d = *data_;
 #if RC_HAVE_AVX2_PATHS
   if (d.lanes == 8) {
-    solve8(d.batches8, bodies.data(), soft, useBias, backward);
+    solve8(d.batches8, bodies.data(), soft, useBias, backward, sameMotion);
     return;
   }
 #endif
-  solve4(d.batches4, bodies.data(), soft, useBias, backward);
+  solve4(d.batches4, bodies.data(), soft, useBias, backward, sameMotion);
 }
 
 }  // namespace rc

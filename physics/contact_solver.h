@@ -133,8 +133,11 @@ class ContactSolver {
   // backward: the colours in reverse order. Gauss-Seidel in one fixed order favours one side:
   // a base-20 pyramid's top slid 5 cm sideways while it settled when every pass ran forward,
   // 3 mm when each pass runs the other way from the one before (symmetric Gauss-Seidel).
-  void solve(std::span<SolverBody> bodies, const ContactSoftness& soft, bool useBias,
-             bool backward);
+  // sameMotion (a pass with bias only): every body's dp and dq are as the last relax pass, since
+  // this layout's last set() or refresh(), saw them (no position update since): the separations
+  // it measured are used, not worked out again. The same bits either way.
+  void solve(std::span<SolverBody> bodies, const ContactSoftness& soft, bool useBias, bool backward,
+             bool sameMotion = false);
   // Point `point` of constraint i after the solve: its impulses, maxNormalImpulse and
   // relativeVelocity.
   SolvedPoint solved(std::size_t i, int point) const;

@@ -73,7 +73,8 @@ void WorldState::solve(float dt) {
     // Symmetric Gauss-Seidel: the relax pass sweeps the colours the other way from the solve
     // pass, and each substep starts the way the last one ended.
     const bool backward = sub % 2 == 1;
-    contactSolver_.solve(solverBodies_, soft, true, backward);
+    // From the second substep on, the bodies are where the last relax pass measured them.
+    contactSolver_.solve(solverBodies_, soft, true, backward, sub > 0);
     integratePositions(h);
     contactSolver_.solve(solverBodies_, soft, false, !backward);  // relax
     if (stackSolver_.active()) correctPiles();

@@ -61,13 +61,21 @@ template <class Mask, class V>
   return __builtin_bit_cast(V,
                             (m & __builtin_bit_cast(Mask, a)) | (~m & __builtin_bit_cast(Mask, b)));
 }
-// Whether every lane of a mask (each lane 0 or all ones) is set.
+// Whether every lane of a mask (each lane 0 or all ones) is set. Folded in the vector (an
+// eight-lane mask's halves, then two 64-bit words): lane by lane it was eight extracts and
+// seven ands, a twentieth of a two-point batch's solve.
 template <class Mask>
 [[gnu::always_inline]] inline bool allLanes(Mask m) {
-  std::int32_t all = -1;
-  for (std::size_t i = 0; i < sizeof(Mask) / sizeof(std::int32_t); ++i)
-    all &= m[i];
-  return all == -1;
+  using Words = long long __attribute__((vector_size(16)));
+  M four;
+  if constexpr (sizeof(Mask) == 2 * sizeof(M)) {
+    four = __builtin_shufflevector(m, m, 0, 1, 2, 3) & __builtin_shufflevector(m, m, 4, 5, 6, 7);
+  } else {
+    static_assert(sizeof(Mask) == sizeof(M));
+    four = m;
+  }
+  const Words words = __builtin_bit_cast(Words, four);
+  return (words[0] & words[1]) == -1;
 }
 template <class V>
 [[gnu::always_inline]] inline V vmax(V a, V b) {

@@ -61,7 +61,8 @@ struct Batch {
 };
 static_assert(alignof(Batch<8>) == 32, "AVX loads of a batch need it 32-byte aligned");
 
-// The bodies of one side of a batch, lane by lane (pad: SolverBody::unused, written back as read).
+// The bodies of one side of a batch, lane by lane (pad: SolverBody::unused, which nothing reads;
+// the scatter writes it 0, so that the solve keeps no register for it).
 template <int N>
 struct BodyLanes {
   using F = typename simd::Lanes<N>::F;
@@ -178,8 +179,8 @@ RC_INLINE BodyLanes<N> gatherVelocities(const float* rows, const std::uint32_t (
 // Lanes are written in order; lanes sharing a body (the null body, a kinematic body) hold the
 // same unchanged velocity, so the order does not matter. Only the first half is written.
 template <int N, class F>
-RC_INLINE void scatter(SolverBody* bodies, const std::uint32_t (&index)[N], F vx, F vy, F w,
-                       F pad) {
+RC_INLINE void scatter(SolverBody* bodies, const std::uint32_t (&index)[N], F vx, F vy, F w) {
+  F pad{};
   transpose(vx, vy, w, pad);
   const F rows[4] = {vx, vy, w, pad};
   for (int k = 0; k < 4; ++k) {
@@ -256,8 +257,8 @@ RC_INLINE void warmStartBatch(Batch<N>& c, SolverBody* bodies, const float* free
     v.vBy += c.invMassB * py;
     v.wB += c.invIB * (p.normalImpulse * p.rnB + p.tangentImpulse * p.rtB);
   }
-  scatter<N>(bodies, c.a, v.vAx, v.vAy, v.wA, A.pad);
-  scatter<N>(bodies, c.b, v.vBx, v.vBy, v.wB, B.pad);
+  scatter<N>(bodies, c.a, v.vAx, v.vAy, v.wA);
+  scatter<N>(bodies, c.b, v.vBx, v.vBy, v.wB);
 }
 
 // What one point's normal row needs from the softness: its bias and its mass and impulse
@@ -412,8 +413,8 @@ RC_INLINE void solveBatch(Batch<N>& c, SolverBody* bodies, const ContactSoftness
     p.tangentImpulse = total;
     v.apply(c, applied, tx, ty, p.rtA, p.rtB);
   }
-  scatter<N>(bodies, c.a, v.vAx, v.vAy, v.wA, A.pad);
-  scatter<N>(bodies, c.b, v.vBx, v.vBy, v.wB, B.pad);
+  scatter<N>(bodies, c.a, v.vAx, v.vAy, v.wA);
+  scatter<N>(bodies, c.b, v.vBx, v.vBy, v.wB);
 }
 
 // The passes over every batch, inlined into one function per lane count: four lanes in the

@@ -73,7 +73,7 @@ struct SolvedPoint {
 struct SolverBody {
   Vec2 v{};
   float w = 0.0f;
-  float unused = 0.0f;
+  float unused = 0.0f;  // the contact solver writes it 0
   Vec2 dp{};
   Rot dq{};
 };

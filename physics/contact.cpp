@@ -292,7 +292,7 @@ void WorldState::narrowphase(float dt) {
     Body& bodyB = bodies_[static_cast<std::size_t>(rb.body)];
     // Nothing awake on either side: the contact is as it was when they fell asleep.
     if (!awake(bodyA) && !awake(bodyB)) continue;
-    if (!overlaps(broadphase_.fatAABB(ra.proxy), broadphase_.fatAABB(rb.proxy))) {
+    if (!overlaps(broadphase_.liveFatAABB(ra.proxy), broadphase_.liveFatAABB(rb.proxy))) {
       destroyContact(i);
       continue;
     }
@@ -301,10 +301,14 @@ void WorldState::narrowphase(float dt) {
     // 10 km out) for the separations a resting contact needs.
     // (By component: as two arrays the origins went through memory, and their difference was
     // one vector load of two scalars just stored, a store-forwarding stall, a fifth of this loop.)
+    // (Each body's local centre turned once for both components.)
+    const Vec2 turnedA = rotate(bodyA.xf.q, bodyA.localCenter);
+    const Vec2 turnedB = rotate(bodyB.xf.q, bodyB.localCenter);
     const Transform xfA{{}, bodyA.xf.q};
-    const Transform xfB{{static_cast<float>(preciseOrigin(bodyB, 0) - preciseOrigin(bodyA, 0)),
-                         static_cast<float>(preciseOrigin(bodyB, 1) - preciseOrigin(bodyA, 1))},
-                        bodyB.xf.q};
+    const Transform xfB{
+        {static_cast<float>(preciseOrigin(bodyB, 0, turnedB) - preciseOrigin(bodyA, 0, turnedA)),
+         static_cast<float>(preciseOrigin(bodyB, 1, turnedB) - preciseOrigin(bodyA, 1, turnedA))},
+        bodyB.xf.q};
     const float margin = def_.continuous
                              ? kSpeculativeDistance + dt * (reachSpeed(ra) + reachSpeed(rb))
                              : kSpeculativeDistance;

@@ -541,6 +541,10 @@ void decode(ByteReader& r, WorldState& s) {
   for (std::size_t k = 0; k < s.contacts_.size(); ++k) {
     const WorldState::Contact& c = s.contacts_[k];
     need(aliveShape(c.shapeA) && aliveShape(c.shapeB) && c.shapeA < c.shapeB, "a contact's shapes");
+    // The narrowphase reads a contact's proxies unchecked (Broadphase::liveFatAABB).
+    need(s.shapes_[static_cast<std::size_t>(c.shapeA)].proxy != kNullProxy &&
+             s.shapes_[static_cast<std::size_t>(c.shapeB)].proxy != kNullProxy,
+         "a contact of a disabled body's shape");
     need(s.contactIndex_.emplace(pairKey(c.shapeA, c.shapeB), static_cast<std::int32_t>(k)).second,
          "a contact twice");
   }

@@ -165,13 +165,17 @@ class WorldState {
   // The body's origin in double (its centre minus the turned local centre): what the
   // narrowphase takes differences of.
   double preciseOrigin(const Body& b, int axis) const {  // one component: 0 x, 1 y
+    return preciseOrigin(b, axis, rotate(b.xf.q, b.localCenter));
+  }
+  // The same with the turned local centre given (a caller taking both components turns it once).
+  double preciseOrigin(const Body& b, int axis, Vec2 turned) const {
     if (b.slot < 0) return axis == 0 ? b.xf.p.x : b.xf.p.y;
-    const Vec2 turned = rotate(b.xf.q, b.localCenter);
     return q_[3 * static_cast<std::size_t>(b.slot) + static_cast<std::size_t>(axis)] -
            static_cast<double>(axis == 0 ? turned.x : turned.y);
   }
   std::array<double, 2> preciseOrigin(const Body& b) const {
-    return {preciseOrigin(b, 0), preciseOrigin(b, 1)};
+    const Vec2 turned = rotate(b.xf.q, b.localCenter);
+    return {preciseOrigin(b, 0, turned), preciseOrigin(b, 1, turned)};
   }
   // An awake body's motion over the step so far, from where it started (float: for sweeps).
   Sweep stepSweep(const Body& b) const {

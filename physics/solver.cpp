@@ -629,7 +629,13 @@ void WorldState::warmStart() {
 // step began, which the relax pass's separations are measured with.
 void WorldState::integratePositions(float h) {
   const auto slots = static_cast<std::size_t>(awakeCount_);
-  reserveTurns(slots);
+  // The turning bodies listed without a branch: each body's entry written, the count moved on
+  // only for one that turns (a push_back each was a capacity test and a size store a body).
+  turnAngles_.resize(slots);
+  turnOwners_.resize(slots);
+  float* angles = turnAngles_.data();
+  std::int32_t* owners = turnOwners_.data();
+  std::size_t turns = 0;
   for (std::size_t s = 0; s < slots; ++s) {
     SolverBody& sb = solverBodies_[s];
     // Kept in registers: read back from q_, the three double stores would stall the loads.
@@ -647,11 +653,12 @@ void WorldState::integratePositions(float h) {
     // anchor would only tilt the separation estimate by r (1 - cos turned).
     const auto turned = static_cast<float>(a - startAngle_[s]);
     sb.dq = Rot{};
-    if (turned != 0.0f && !slotRound_[s]) {
-      turnAngles_.push_back(turned);
-      turnOwners_.push_back(static_cast<std::int32_t>(s));
-    }
+    angles[turns] = turned;
+    owners[turns] = static_cast<std::int32_t>(s);
+    turns += turned != 0.0f && !slotRound_[s];
   }
+  turnAngles_.resize(turns);
+  turnOwners_.resize(turns);
   applyTurns([&](std::int32_t s, Rot dq) { solverBodies_[static_cast<std::size_t>(s)].dq = dq; });
 }
 

@@ -151,8 +151,6 @@ void WorldState::advancePileLayout() {
 // solver colours them first (it needs only their bodies), then each constraint is prepared
 // straight into its lane.
 void WorldState::prepareContacts() {
-  constraintSources_.clear();
-  constraintBodies_.clear();
   bouncy_.clear();
   bouncyIndex_.clear();
   tracked_.clear();
@@ -166,25 +164,41 @@ void WorldState::prepareContacts() {
     slotOverlaps_[static_cast<std::size_t>(slot)] = 0;
   overlapping_.clear();
   if (awakeCount_ == 0) {
+    constraintSources_.clear();
+    constraintBodies_.clear();
     lanesCurrent_ = false;  // the contacts may change before the solver next sees them
     return;
   }
   // shared: a body with two contacts overlapping past the slop.
   bool shared = false;
-  for (const std::int32_t index : awakeContactList()) {
+  // Written by index into lists as long as the contacts that might need them, cut to the count
+  // after (a push_back each was a capacity test and a size store, an eighth of this loop), and
+  // from local copies of the arrays' addresses: the byte stores below may alias any member, and
+  // each vector's start was loaded again after them.
+  const std::vector<std::int32_t>& listed = awakeContactList();
+  constraintSources_.resize(listed.size());
+  constraintBodies_.resize(listed.size());
+  ConstraintSource* const sources = constraintSources_.data();
+  ConstraintBodies* const sourceBodies = constraintBodies_.data();
+  const Contact* const contacts = contacts_.data();
+  const ShapeRecord* const shapes = shapes_.data();
+  const Body* const bodies = bodies_.data();
+  std::size_t made = 0;
+  for (const std::int32_t index : listed) {
     const auto ci = static_cast<std::size_t>(index);
-    const Contact& c = contacts_[ci];
+    const Contact& c = contacts[ci];
     if (!c.touching) continue;
-    const std::int32_t bodyA = shapes_[static_cast<std::size_t>(c.shapeA)].body;
-    const std::int32_t bodyB = shapes_[static_cast<std::size_t>(c.shapeB)].body;
-    const Body& a = bodies_[static_cast<std::size_t>(bodyA)];
-    const Body& b = bodies_[static_cast<std::size_t>(bodyB)];
+    const std::int32_t bodyA = shapes[static_cast<std::size_t>(c.shapeA)].body;
+    const std::int32_t bodyB = shapes[static_cast<std::size_t>(c.shapeB)].body;
+    const Body& a = bodies[static_cast<std::size_t>(bodyA)];
+    const Body& b = bodies[static_cast<std::size_t>(bodyB)];
     const std::int32_t slotA = awake(a) ? a.slot : -1, slotB = awake(b) ? b.slot : -1;
     if (slotA < 0 && slotB < 0) continue;  // asleep against asleep or static
     const bool movesA = a.invMass > 0.0f || a.invInertia > 0.0f;
     const bool movesB = b.invMass > 0.0f || b.invInertia > 0.0f;
-    constraintSources_.push_back({static_cast<std::int32_t>(ci), bodyA, bodyB});
-    constraintBodies_.push_back({slotA, slotB, c.manifold.pointCount, movesA, movesB});
+    sources[made] = {static_cast<std::int32_t>(ci), bodyA, bodyB};
+    sourceBodies[made] = {slotA, slotB, c.manifold.pointCount, movesA, movesB};
+    ++made;
     // The push-out speed is a body's, not each contact's: a body overlapping k others past the
     // slop is pushed out of each at 1/k of it, so that together they push it no faster than the
     // push-out speed (what the relax pass cannot take back of a push stays in the body as
@@ -203,6 +217,8 @@ void WorldState::prepareContacts() {
       }
     }
   }
+  constraintSources_.resize(made);
+  constraintBodies_.resize(made);
   profile_.layoutKept = contactSolver_.prepare(constraintBodies_, awakeCount_, def_.maxSolverLanes);
   profile_.colours = contactSolver_.colourCount();
   profile_.overflow = contactSolver_.overflowCount();

@@ -2,10 +2,13 @@
 // speculative points and their foresight), contact events.
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 
 #include "physics/collide.h"
+#include "physics/simd.h"
 #include "physics/world.h"
 #include "physics/world_state.h"
 
@@ -230,7 +233,17 @@ bool WorldState::recycle(Contact& c, const Body& a, const Body& b, Vec2 offset,
   const float tolerance = def_.contactRecycleDistance;
   constexpr float kTurn = 0.02f;  // rad: cos 0.9998
   if (!c.recyclable || margin > kSpeculativeDistance + tolerance) return false;
-  const Rot dqA = invMul(c.madeQA, a.xf.q), dqB = invMul(c.madeQB, b.xf.q);
+  // Four lanes at a time where the two bodies do the same arithmetic (each lane the scalar
+  // expression's operations in its order, so the same bits; a - b as a + (-b), exact): the
+  // turns since the manifold was made, (dqA.c, dqA.s, dqB.c, dqB.s) = invMul(made, now), that
+  // is q.c r.c + q.s r.s and q.c r.s + q.s (-r.c).
+  using simd::F;
+  const F made = {c.madeQA.c, c.madeQA.s, c.madeQB.c, c.madeQB.s};
+  const F now = {a.xf.q.c, a.xf.q.s, b.xf.q.c, b.xf.q.s};
+  const F dq = __builtin_shufflevector(made, made, 0, 0, 2, 2) * now +
+               __builtin_shufflevector(made, made, 1, 1, 3, 3) *
+                   __builtin_shufflevector(now, -now, 1, 4, 3, 6);
+  const Rot dqA{dq[0], dq[1]}, dqB{dq[2], dq[3]};
   if (std::fabs(dqA.s) > kTurn || std::fabs(dqB.s) > kTurn || dqA.c < 0.0f || dqB.c < 0.0f)
     return false;
   const float reachA =
@@ -242,10 +255,19 @@ bool WorldState::recycle(Contact& c, const Body& a, const Body& b, Vec2 offset,
   if (reach < 0.0f) return false;
   Manifold& m = c.manifold;
   Vec2 onA[2], carried[2];  // A's point turned with it; B's carried point from A's
+  // A point's two anchors (adjacent in ManifoldPoint) turned at once: rotate's c x - s y and
+  // s x + c y as x (c, s) + y (-s, c).
+  static_assert(offsetof(ManifoldPoint, anchorB) ==
+                offsetof(ManifoldPoint, anchorA) + sizeof(Vec2));
+  const F across = __builtin_shufflevector(dq, -dq, 5, 0, 7, 2);  // (-dqA.s, dqA.c, -dqB.s, dqB.c)
   for (int k = 0; k < m.pointCount; ++k) {
     const ManifoldPoint& mp = m.points[k];
-    onA[k] = rotate(dqA, mp.anchorA);
-    carried[k] = offset + rotate(dqB, mp.anchorB) - onA[k];
+    F anchors;
+    std::memcpy(&anchors, &mp.anchorA, sizeof anchors);
+    const F turned = __builtin_shufflevector(anchors, anchors, 0, 0, 2, 2) * dq +
+                     __builtin_shufflevector(anchors, anchors, 1, 1, 3, 3) * across;
+    onA[k] = {turned[0], turned[1]};
+    carried[k] = offset + Vec2{turned[2], turned[3]} - onA[k];
     if (!(lengthSquared(carried[k]) <= reach * reach)) return false;
   }
   // The point reported (events, contactPoints): midway between the two carried points.

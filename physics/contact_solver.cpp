@@ -679,6 +679,14 @@ struct ContactSolver::Data {
 
 namespace {
 
+// Constraint i's batch index (a shift: a division by the width, known only at run time, was a
+// divide instruction in refresh(), once a constraint a step).
+template <class SolverData>
+std::size_t batchOf(const SolverData& d, std::size_t i) {
+  const auto lane = static_cast<std::size_t>(d.constraintLane[i]);
+  return d.lanes == 8 ? lane >> 3 : lane >> 2;
+}
+
 // Constraint i's batch and lane, at the width prepare() laid out: f(batch, lane).
 template <class SolverData, class Visit>
 decltype(auto) atLane(SolverData& d, std::size_t i, Visit&& f) {
@@ -779,15 +787,14 @@ bool ContactSolver::prepare(std::span<const ConstraintBodies> constraints, int b
 
 void ContactSolver::set(std::size_t i, const ContactConstraint& constraint) {
   Data& d = *data_;
-  d.staleMasses[static_cast<std::size_t>(d.constraintLane[i] / d.lanes)] = 1;
+  d.staleMasses[batchOf(d, i)] = 1;
   atLane(d, i, [&](auto& batch, int lane) { writeLane(batch, lane, constraint); });
 }
 
 bool ContactSolver::refresh(std::size_t i, int pointCount, float separation0, float separation1,
                             float maxPushout) {
   Data& d = *data_;
-  const auto lane = static_cast<std::size_t>(d.constraintLane[i]);
-  if (d.partial[lane / static_cast<std::size_t>(d.lanes)]) return false;
+  if (d.partial[batchOf(d, i)]) return false;
   atLane(d, i, [&](auto& b, int l) {
     b.maxPushout[l] = maxPushout;
     b.p[0].baseSeparation[l] = separation0;

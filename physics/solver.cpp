@@ -536,6 +536,28 @@ void WorldState::velocityRows(std::span<const float> v, std::size_t slots,
 void WorldState::integrateFreeMotion(int substep, float h) {
   const auto slots = static_cast<std::size_t>(awakeCount_);
   const double t = time_ + static_cast<double>(substep) * static_cast<double>(h);
+  freeV_.resize(3 * slots + 4);
+  if (def_.integrator == Integrator::semiImplicitEuler && fields_.empty() && damped_.empty() &&
+      !checkFreeMotion_) {
+    // The common case in one pass: constant accelerations (gravity, the step's forces), no
+    // damping, nothing to check. The same operations as integrate() with accelerations() and
+    // the copies below (there, a copy of the accelerations, the update, and the copies were
+    // three passes over the bodies).
+    const float* accel = baseAccel_.data();
+    for (std::size_t s = 0; s < slots; ++s) {
+      float* vs = &v_[3 * s];
+      double* qs = &q_[3 * s];
+      for (std::size_t k = 0; k < 3; ++k) {
+        vs[k] += h * accel[3 * s + k];
+        qs[k] += h * vs[k];
+        freeV_[3 * s + k] = vs[k];
+      }
+      solverBodies_[s].v = {vs[0], vs[1]};
+      solverBodies_[s].w = vs[2];
+    }
+    std::fill_n(freeV_.begin() + static_cast<std::ptrdiff_t>(3 * slots), 4, 0.0f);
+    return;
+  }
   const std::span<double> q(q_.data(), 3 * slots);
   const std::span<float> v(v_.data(), 3 * slots);
   // Restitution reverses the approach speed at the impact, read from the velocity the
@@ -561,7 +583,6 @@ void WorldState::integrateFreeMotion(int substep, float h) {
   // The free velocities, kept for the position update (and with semi-implicit Euler the
   // approach restitution reads, laid out as velocityRows does), and the solver's bodies'
   // velocities, in one pass.
-  freeV_.resize(3 * slots + 4);
   for (std::size_t s = 0; s < slots; ++s) {
     const float vx = v_[3 * s], vy = v_[3 * s + 1], w = v_[3 * s + 2];
     freeV_[3 * s] = vx;

@@ -119,7 +119,7 @@ void WorldState::solve(float dt) {
 }
 
 // Whether the constraints' layout is the one before (pileLayoutKept_, for pileConstraint).
-void WorldState::advancePileLayout() {
+void WorldState::advancePileLayout(bool sameAsLast) {
   // A point stays a row within 1 mm apart only while the constraints are those of the steps
   // before: kept through changes (a point that lifted off as a pile was let go held 1 mm short
   // as a row), a base-40 pyramid slept at step 75-81 with 5-9 mm instead of 32 with 0.5-0.8
@@ -128,15 +128,21 @@ void WorldState::advancePileLayout() {
   // layout: as last step's, and after a change of count only from the second step of the new
   // count (kept from the first, base 40 slept at 84-213). Its hash and count, not the contact
   // solver's cache, so that a restored world decides as the one it was taken from.
-  std::uint64_t layout = kFnvOffset ^ static_cast<std::uint64_t>(awakeCount_);
-  for (const ConstraintBodies& cb : constraintBodies_) {
-    const std::uint64_t word = static_cast<std::uint64_t>(static_cast<std::uint32_t>(cb.slotA)) |
-                               static_cast<std::uint64_t>(static_cast<std::uint32_t>(cb.slotB))
-                                   << 32;
-    layout = (layout ^ word) * kFnvPrime;
-    layout =
-        (layout ^ static_cast<std::uint64_t>(cb.pointCount | cb.movesA << 2 | cb.movesB << 3)) *
-        kFnvPrime;
+  // Where the contact solver kept its layout, these constraints are byte for byte those of the
+  // last call (a restored world's solver starts with none kept), whose hash pileLayout_ holds:
+  // hashing them again was 1% of a resting pile's step.
+  std::uint64_t layout = pileLayout_;
+  if (!sameAsLast) {
+    layout = kFnvOffset ^ static_cast<std::uint64_t>(awakeCount_);
+    for (const ConstraintBodies& cb : constraintBodies_) {
+      const std::uint64_t word = static_cast<std::uint64_t>(static_cast<std::uint32_t>(cb.slotA)) |
+                                 static_cast<std::uint64_t>(static_cast<std::uint32_t>(cb.slotB))
+                                     << 32;
+      layout = (layout ^ word) * kFnvPrime;
+      layout =
+          (layout ^ static_cast<std::uint64_t>(cb.pointCount | cb.movesA << 2 | cb.movesB << 3)) *
+          kFnvPrime;
+    }
   }
   const auto count = static_cast<std::uint32_t>(constraintBodies_.size());
   pileLayoutKept_ = pileLayoutValid_ && layout == pileLayout_;
@@ -230,7 +236,7 @@ void WorldState::prepareContacts() {
 
   const bool piles = def_.stackSolveDepth > 0;
   if (piles) {
-    advancePileLayout();
+    advancePileLayout(profile_.layoutKept);
     pileTouchChanged_ = false;  // pileConstraint sets it
     stackConstraints_.resize(constraintSources_.size());
     slotInvMass_.resize(static_cast<std::size_t>(awakeCount_));

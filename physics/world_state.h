@@ -238,7 +238,7 @@ class WorldState {
   bool bounceTogether(ContactConstraint& cc, const Bounce (&roles)[2], Vec2& vA, float& wA,
                       Vec2& vB, float& wB);
   void prepareBounceGroups();
-  void advancePileLayout();
+  void advancePileLayout(bool sameAsLast);
   void correctPiles();
   void pileDetails();
   void pileConstraint(std::size_t i, const ContactConstraint& cc);

@@ -189,6 +189,10 @@ void WorldState::prepareContacts() {
   const Contact* const contacts = contacts_.data();
   const ShapeRecord* const shapes = shapes_.data();
   const Body* const bodies = bodies_.data();
+  const std::int32_t awakeSlots = awakeCount_;
+  auto awakeSlot = [awakeSlots](const Body& body) {
+    return body.slot >= 0 && body.slot < awakeSlots ? body.slot : -1;
+  };
   std::size_t made = 0;
   for (const std::int32_t index : listed) {
     const auto ci = static_cast<std::size_t>(index);
@@ -198,7 +202,7 @@ void WorldState::prepareContacts() {
     const std::int32_t bodyB = shapes[static_cast<std::size_t>(c.shapeB)].body;
     const Body& a = bodies[static_cast<std::size_t>(bodyA)];
     const Body& b = bodies[static_cast<std::size_t>(bodyB)];
-    const std::int32_t slotA = awake(a) ? a.slot : -1, slotB = awake(b) ? b.slot : -1;
+    const std::int32_t slotA = awakeSlot(a), slotB = awakeSlot(b);
     if (slotA < 0 && slotB < 0) continue;  // asleep against asleep or static
     const bool movesA = a.invMass > 0.0f || a.invInertia > 0.0f;
     const bool movesB = b.invMass > 0.0f || b.invInertia > 0.0f;
@@ -242,12 +246,19 @@ void WorldState::prepareContacts() {
     slotInvMass_.resize(static_cast<std::size_t>(awakeCount_));
     slotInvInertia_.resize(static_cast<std::size_t>(awakeCount_));
   }
-  for (std::size_t i = 0; i < constraintSources_.size(); ++i) {
-    const ConstraintSource& source = constraintSources_[i];
-    Contact& c = contacts_[static_cast<std::size_t>(source.contact)];
-    const std::int32_t slotA = constraintBodies_[i].slotA, slotB = constraintBodies_[i].slotB;
+  // (The arrays' addresses and the push-out speed in registers, as above.)
+  const std::size_t constraints = constraintSources_.size();
+  const ConstraintSource* const constraintSources = constraintSources_.data();
+  const ConstraintBodies* const constraintBodies = constraintBodies_.data();
+  std::int32_t* const laneContacts = laneContacts_.data();
+  Contact* const touching = contacts_.data();
+  const float pushout = def_.maxPushoutSpeed;
+  for (std::size_t i = 0; i < constraints; ++i) {
+    const ConstraintSource& source = constraintSources[i];
+    Contact& c = touching[static_cast<std::size_t>(source.contact)];
+    const std::int32_t slotA = constraintBodies[i].slotA, slotB = constraintBodies[i].slotB;
     // Its share of the push-out speed (see above).
-    float maxPushout = def_.maxPushoutSpeed;
+    float maxPushout = pushout;
     if (shared) {
       const std::int32_t kA = slotA >= 0 ? slotOverlaps_[static_cast<std::size_t>(slotA)] : 0;
       const std::int32_t kB = slotB >= 0 ? slotOverlaps_[static_cast<std::size_t>(slotB)] : 0;
@@ -261,7 +272,7 @@ void WorldState::prepareContacts() {
     // speed, and its lane, if it still holds it, needs only those; its pile constraint only its
     // separations (its slots and their masses are last step's). A bouncy one is copied whole
     // for restitution.
-    if (lanesKept && laneContacts_[i] == source.contact && c.recycled && c.restitution == 0.0f &&
+    if (lanesKept && laneContacts[i] == source.contact && c.recycled && c.restitution == 0.0f &&
         contactSolver_.refresh(i, m.pointCount, m.points[0].separation,
                                m.pointCount == 2 ? m.points[1].separation : 0.0f, maxPushout)) {
       if (piles) pileTouching(i, c);
@@ -301,7 +312,7 @@ void WorldState::prepareContacts() {
       p.relativeVelocity = 0.0f;
     }
     contactSolver_.set(i, cc);
-    laneContacts_[i] = source.contact;
+    laneContacts[i] = source.contact;
     if (piles) {
       pileConstraint(i, cc);
       pileTouching(i, c);

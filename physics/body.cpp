@@ -258,7 +258,7 @@ void WorldState::refitBody(Body& b, Vec2 displacement, float turn) {
       kAabbMargin;
   for (std::int32_t s : b.shapes) {
     const ShapeRecord& r = shapes_[static_cast<std::size_t>(s)];
-    const float reach = fastTurn ? length(r.bound.center - b.localCenter) + r.bound.radius : 0.0f;
+    const float reach = fastTurn ? r.reach : 0.0f;
     if (turned * reach > kAabbMargin) {
       // A fast turner (a swinging door): its next step's box is the disc every point of the
       // shape stays in as the body turns about its centre of mass, so the pairs it will meet

@@ -110,6 +110,7 @@ ShapeId WorldState::createShape(BodyId bodyId, const Shape& shape, const ShapeDe
     }
     widenExtents(b.minExtent, b.maxExtent, shape, r.bound);
     b.round = b.round && centredCircle(shape, b.localCenter);
+    r.reach = length(r.bound.center - b.localCenter) + r.bound.radius;
   }
   if (b.slot >= 0) pendingRefit_.push_back(bodyId.index);
   return {index, generation};
@@ -156,7 +157,7 @@ void WorldState::updateMass(Body& b) {
   v_[i + 1] += shift.y;
 }
 
-void WorldState::massProperties(Body& b) const {
+void WorldState::massProperties(Body& b) {
   b.mass = b.invMass = b.inertia = b.invInertia = 0.0f;
   b.minExtent = std::numeric_limits<float>::max();
   b.maxExtent = 0.0f;
@@ -186,6 +187,10 @@ void WorldState::massProperties(Body& b) const {
     b.invInertia = (b.fixedRotation || b.inertia <= 0.0f) ? 0.0f : 1.0f / b.inertia;
   }
   b.round = isRound(b);
+  for (std::int32_t s : b.shapes) {
+    ShapeRecord& r = shapes_[static_cast<std::size_t>(s)];
+    r.reach = length(r.bound.center - b.localCenter) + r.bound.radius;
+  }
 }
 
 // ------------------------------------------------------------------------------ proxies

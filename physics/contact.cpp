@@ -292,8 +292,7 @@ void WorldState::narrowphase(float dt) {
     const Body& b = bodies_[static_cast<std::size_t>(r.body)];
     if (b.slot < 0) return 0.0f;
     const auto i = 3 * static_cast<std::size_t>(b.slot);
-    const float reach = length(r.bound.center - b.localCenter) + r.bound.radius;
-    return length(Vec2{v_[i], v_[i + 1]}) + std::fabs(v_[i + 2]) * reach;
+    return length(Vec2{v_[i], v_[i + 1]}) + std::fabs(v_[i + 2]) * r.reach;
   };
   // Back to front: a destroyed contact is replaced by the last one, already updated. The listed
   // contacts while the list holds; once a contact wakes an island, every contact below the one

@@ -95,6 +95,10 @@ class WorldState {
     ProxyId proxy = kNullProxy;  // kNullProxy while its body is disabled
     std::uint64_t userData = 0;
     BoundingCircle bound{};  // in the body frame: how far the shape reaches as the body turns
+    // How far it reaches from its body's centre of mass, |bound.center - localCenter| +
+    // bound.radius: kept with the centre (massProperties, and createShape where that is not
+    // called), so that the narrowphase's margins and the refit take no square roots for it.
+    float reach = 0;
   };
   struct Contact {
     std::int32_t shapeA = -1, shapeB = -1;  // shapeA < shapeB
@@ -191,7 +195,7 @@ class WorldState {
   // Mass, inertia, centre of mass, extents and roundness from the body's shapes; updateMass
   // also keeps the body's origin and motion where they were when the centre moves.
   void updateMass(Body& b);
-  void massProperties(Body& b) const;
+  void massProperties(Body& b);
   // The body's proxies from its transform, stretched along its next step: displacement, and
   // turn (radians) for the shapes the turn carries beyond the AABB margin.
   void refitBody(Body& b, Vec2 displacement, float turn = 0.0f);

@@ -110,7 +110,7 @@ ShapeId WorldState::createShape(BodyId bodyId, const Shape& shape, const ShapeDe
     }
     widenExtents(b.minExtent, b.maxExtent, shape, r.bound);
     b.round = b.round && centredCircle(shape, b.localCenter);
-    r.reach = length(r.bound.center - b.localCenter) + r.bound.radius;
+    r.setReach(b.localCenter);
   }
   if (b.slot >= 0) pendingRefit_.push_back(bodyId.index);
   return {index, generation};
@@ -187,10 +187,8 @@ void WorldState::massProperties(Body& b) {
     b.invInertia = (b.fixedRotation || b.inertia <= 0.0f) ? 0.0f : 1.0f / b.inertia;
   }
   b.round = isRound(b);
-  for (std::int32_t s : b.shapes) {
-    ShapeRecord& r = shapes_[static_cast<std::size_t>(s)];
-    r.reach = length(r.bound.center - b.localCenter) + r.bound.radius;
-  }
+  for (std::int32_t s : b.shapes)
+    shapes_[static_cast<std::size_t>(s)].setReach(b.localCenter);
 }
 
 // ------------------------------------------------------------------------------ proxies

@@ -186,7 +186,7 @@ void WorldState::prepareContacts() {
   constraintBodies_.resize(listed.size());
   ConstraintSource* const sources = constraintSources_.data();
   ConstraintBodies* const sourceBodies = constraintBodies_.data();
-  const Contact* const contacts = contacts_.data();
+  Contact* const contacts = contacts_.data();
   const ShapeRecord* const shapes = shapes_.data();
   const Body* const bodies = bodies_.data();
   const std::int32_t awakeSlots = awakeCount_;
@@ -246,17 +246,14 @@ void WorldState::prepareContacts() {
     slotInvMass_.resize(static_cast<std::size_t>(awakeCount_));
     slotInvInertia_.resize(static_cast<std::size_t>(awakeCount_));
   }
-  // (The arrays' addresses and the push-out speed in registers, as above.)
-  const std::size_t constraints = constraintSources_.size();
-  const ConstraintSource* const constraintSources = constraintSources_.data();
-  const ConstraintBodies* const constraintBodies = constraintBodies_.data();
+  // (The lists' addresses, still those above: cutting them to `made` moved nothing. The lanes'
+  // contacts and the push-out speed in registers too.)
   std::int32_t* const laneContacts = laneContacts_.data();
-  Contact* const touching = contacts_.data();
   const float pushout = def_.maxPushoutSpeed;
-  for (std::size_t i = 0; i < constraints; ++i) {
-    const ConstraintSource& source = constraintSources[i];
-    Contact& c = touching[static_cast<std::size_t>(source.contact)];
-    const std::int32_t slotA = constraintBodies[i].slotA, slotB = constraintBodies[i].slotB;
+  for (std::size_t i = 0; i < made; ++i) {
+    const ConstraintSource& source = sources[i];
+    Contact& c = contacts[static_cast<std::size_t>(source.contact)];
+    const std::int32_t slotA = sourceBodies[i].slotA, slotB = sourceBodies[i].slotB;
     // Its share of the push-out speed (see above).
     float maxPushout = pushout;
     if (shared) {
@@ -553,7 +550,10 @@ void WorldState::velocityRows(std::span<const float> v, std::size_t slots,
 void WorldState::integrateFreeMotion(int substep, float h) {
   const auto slots = static_cast<std::size_t>(awakeCount_);
   const double t = time_ + static_cast<double>(substep) * static_cast<double>(h);
+  // The free velocities as the contact solver's rows (velocityRows): the null body's zeros and
+  // the padding after the bodies' rows, which neither path below writes.
   freeV_.resize(3 * slots + 4);
+  std::fill_n(freeV_.begin() + static_cast<std::ptrdiff_t>(3 * slots), 4, 0.0f);
   if (def_.integrator == Integrator::semiImplicitEuler && fields_.empty() && damped_.empty() &&
       !checkFreeMotion_) {
     // The common case in one pass: constant accelerations (gravity, the step's forces), no
@@ -572,7 +572,6 @@ void WorldState::integrateFreeMotion(int substep, float h) {
       solverBodies_[s].v = {vs[0], vs[1]};
       solverBodies_[s].w = vs[2];
     }
-    std::fill_n(freeV_.begin() + static_cast<std::ptrdiff_t>(3 * slots), 4, 0.0f);
     return;
   }
   const std::span<double> q(q_.data(), 3 * slots);
@@ -608,7 +607,6 @@ void WorldState::integrateFreeMotion(int substep, float h) {
     solverBodies_[s].v = {vx, vy};
     solverBodies_[s].w = w;
   }
-  std::fill_n(freeV_.begin() + static_cast<std::ptrdiff_t>(3 * slots), 4, 0.0f);
 }
 
 // Only the damped bodies: reading every awake body's damping is a cache miss per body. With

@@ -95,10 +95,11 @@ class WorldState {
     ProxyId proxy = kNullProxy;  // kNullProxy while its body is disabled
     std::uint64_t userData = 0;
     BoundingCircle bound{};  // in the body frame: how far the shape reaches as the body turns
-    // How far it reaches from its body's centre of mass, |bound.center - localCenter| +
-    // bound.radius: kept with the centre (massProperties, and createShape where that is not
-    // called), so that the narrowphase's margins and the refit take no square roots for it.
+    // How far it reaches from its body's centre of mass: kept with the centre (massProperties,
+    // and createShape where that is not called), so that the narrowphase's margins and the
+    // refit take no square roots for it.
     float reach = 0;
+    void setReach(Vec2 localCenter) { reach = length(bound.center - localCenter) + bound.radius; }
   };
   struct Contact {
     std::int32_t shapeA = -1, shapeB = -1;  // shapeA < shapeB
@@ -168,10 +169,8 @@ class WorldState {
   }
   // The body's origin in double (its centre minus the turned local centre): what the
   // narrowphase takes differences of.
-  double preciseOrigin(const Body& b, int axis) const {  // one component: 0 x, 1 y
-    return preciseOrigin(b, axis, rotate(b.xf.q, b.localCenter));
-  }
-  // The same with the turned local centre given (a caller taking both components turns it once).
+  // One component (0 x, 1 y), given the turned local centre rotate(b.xf.q, b.localCenter), which
+  // a caller taking both turns once.
   double preciseOrigin(const Body& b, int axis, Vec2 turned) const {
     if (b.slot < 0) return axis == 0 ? b.xf.p.x : b.xf.p.y;
     return q_[3 * static_cast<std::size_t>(b.slot) + static_cast<std::size_t>(axis)] -

@@ -318,6 +318,13 @@ class WorldState {
   // (contactListStale_). Not state: never saved, made again after a restore.
   std::vector<std::uint8_t> contactAsleep_;
   std::vector<std::int32_t> awakeContacts_;
+  // Per awake slot, for a narrowphase with more contacts than awake bodies: the body's origin in
+  // double (preciseOrigin) and its speed and turning speed (|v|, |w|), worked out once.
+  struct SlotPose {
+    double x, y;
+    float speed, spin;
+  };
+  std::vector<SlotPose> slotPoses_;
   std::uint64_t awakeEpoch_ = 1, contactSleepEpoch_ = 0;
   bool contactListStale_ = true;
   bool contactMarksHold() const { return contactSleepEpoch_ == awakeEpoch_; }

@@ -490,6 +490,45 @@ TEST(Snapshot, ContactNormalsOffUnitAreRefused) {
   EXPECT_NO_THROW(same.restore(snap));
 }
 
+// The narrowphase reads a contact's two proxies unchecked, so restore() refuses a contact one of
+// whose shapes has none (a disabled body's): a box resting on the ground, its contact's first
+// shape changed in the bytes to a disabled body's shape. Forty shapes made first give the
+// contact's pair of indices bytes found once.
+TEST(Snapshot, ContactOfADisabledBodysShapeIsRefused) {
+  rc::World w;
+  const BodyId filler = w.createBody({});
+  for (int i = 0; i < 40; ++i)
+    w.createShape(filler, rc::makeBox(0.1f, 0.1f, {100.0f + static_cast<float>(i), 100}));
+  const rc::ShapeId ground = w.createShape(w.createBody({}), rc::makeBox(5, 0.5f, {0, -0.5f}));
+  const BodyId off = w.createBody(dynamicAt({-3, 3}));
+  const rc::ShapeId offShape = w.createShape(off, rc::makeBox(0.5f, 0.5f));
+  w.setEnabled(off, false);
+  const rc::ShapeId box =
+      w.createShape(w.createBody(dynamicAt({0, 0.5f})), rc::makeBox(0.5f, 0.5f));
+  w.step(kStep);
+  ASSERT_EQ(w.touchingContactCount(), 1);
+  ASSERT_LT(offShape.index, box.index);
+  const rc::WorldSnapshot snap = w.snapshot();
+  const std::int32_t pair[2] = {ground.index, box.index};
+  std::vector<std::size_t> found;
+  for (std::size_t at = 0; at + sizeof pair <= snap.size(); ++at)
+    if (std::memcmp(&snap[at], pair, sizeof pair) == 0) found.push_back(at);
+  ASSERT_EQ(found.size(), 1u);
+  rc::WorldSnapshot bad = snap;
+  std::memcpy(&bad[found[0]], &offShape.index, sizeof offShape.index);
+  rc::World target;
+  target.restore(snap);  // the bytes as they were are taken
+  const std::uint64_t before = target.stateHash();
+  try {
+    target.restore(bad);
+    ADD_FAILURE() << "a contact of a disabled body's shape was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("a contact of a disabled body's shape"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(target.stateHash(), before);
+}
+
 TEST(Snapshot, OtherFormatsAndWorldsAreRefused) {
   rc::World w;
   w.createShape(w.createBody(dynamicAt({0, 1})), rc::makeCircle({}, 0.5f));

@@ -267,7 +267,10 @@ void WorldState::refitBody(Body& b, Vec2 displacement, float turn) {
       broadphase_.moveProxy(r.proxy, {{c.x - reach, c.y - reach}, {c.x + reach, c.y + reach}},
                             displacement);
     } else {
-      broadphase_.moveProxy(r.proxy, computeAABB(r.shape, b.xf), displacement);
+      // (Tested inline first: a resting shape's fat box stays, and the call is skipped.)
+      const AABB box = computeAABB(r.shape, b.xf);
+      if (!broadphase_.fits(r.proxy, box, displacement))
+        broadphase_.moveProxy(r.proxy, box, displacement);
     }
   }
 }

@@ -13,22 +13,9 @@ void checkAABB(const AABB& box, const char* where) {
     throw InvalidProxy(std::string(where) + ": AABB is not finite or has lower > upper");
 }
 
-// The fat AABB for a tight one: the margin on every side, stretched along the displacement.
-AABB fatten(const AABB& aabb, Vec2 displacement) {
-  AABB fat = inflate(aabb, kAabbMargin);
-  const Vec2 d = predictedStretch(displacement);
-  (d.x < 0.0f ? fat.lower.x : fat.upper.x) += d.x;
-  (d.y < 0.0f ? fat.lower.y : fat.upper.y) += d.y;
-  return fat;
-}
-
 }  // namespace
 
-Vec2 predictedStretch(Vec2 displacement) {
-  // Below this length the cap does not bite: no square root for the usual mover.
-  constexpr float uncapped = kMaxPrediction / (kDisplacementMultiplier - 1.0f);
-  if (lengthSquared(displacement) <= uncapped * uncapped)
-    return kDisplacementMultiplier * displacement;
+Vec2 cappedStretch(Vec2 displacement) {
   const float len = length(displacement);
   if (!(len > 0.0f)) return displacement;  // zero stays zero; NaN is caught by the caller
   return std::min(kDisplacementMultiplier, 1.0f + kMaxPrediction / len) * displacement;
@@ -85,25 +72,12 @@ void ProxyStore::release(ProxyId id) {
 }
 
 bool ProxyStore::refit(ProxyId id, const AABB& aabb, Vec2 displacement) {
+  if (fits(id, aabb, displacement)) return false;  // the common case
   ProxyData& p = proxies_[checked(id)];
-  const AABB fat = fatten(aabb, displacement);
-  // The common case first: still inside. The box must hold the proxy for its next step too, so
-  // that a fast mover's pairs exist before it moves: the tight box swept by the displacement.
-  // A NaN anywhere fails one of these comparisons and takes the checked path below.
-  AABB swept = aabb;
-  (displacement.x < 0.0f ? swept.lower.x : swept.upper.x) += displacement.x;
-  (displacement.y < 0.0f ? swept.lower.y : swept.upper.y) += displacement.y;
-  if (p.fat.contains(swept) && aabb.lower.x <= aabb.upper.x && aabb.lower.y <= aabb.upper.y) {
-    // But a fat AABB left stretched by a fast mover that slowed down would pair with
-    // everything around it, so it is refitted once it is far larger than a new one (a steady
-    // mover's boxes keep their size and are not).
-    const Vec2 grown = (p.fat.upper - p.fat.lower) - (fat.upper - fat.lower);
-    if (std::max(grown.x, grown.y) <= 4.0f * kAabbMargin) return false;
-  }
   checkAABB(aabb, name_);
   if (!isFinite(displacement))
     throw InvalidProxy(std::string(name_) + ": displacement is not finite");
-  p.fat = fat;
+  p.fat = fatten(aabb, displacement);
   if (!p.moved) {
     p.moved = true;
     moveBuffer_.push_back(id);

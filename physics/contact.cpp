@@ -301,8 +301,7 @@ void WorldState::narrowphase(float dt) {
     for (std::size_t s = 0; s < posed; ++s) {
       const Body& b = bodies_[static_cast<std::size_t>(slotBody_[s])];
       const Vec2 turned = rotate(b.xf.q, b.localCenter);
-      slotPoses_[s] = {q_[3 * s] - static_cast<double>(turned.x),
-                       q_[3 * s + 1] - static_cast<double>(turned.y),
+      slotPoses_[s] = {preciseOrigin(b, 0, turned), preciseOrigin(b, 1, turned),
                        length(Vec2{v_[3 * s], v_[3 * s + 1]}), std::fabs(v_[3 * s + 2])};
     }
   }
